@@ -1,0 +1,37 @@
+# Two commands for a newcomer: `make book` builds the static site, `make test` runs every test.
+# Each creates .venv if it is missing and installs what it needs (Python 3.11 and pip suffice).
+
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+SITE   := _build/html
+
+.PHONY: book test notebooks clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+
+$(STAMP): pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e ".[book,test,dev]"
+	touch $(STAMP)
+
+# MathJax 3 is served by the site itself (no CDN): copied from the PyPI package at build time.
+_mathjax/mathjax/es5/tex-chtml.js: $(STAMP)
+	rm -rf _mathjax && mkdir -p _mathjax
+	cp -r "$$($(BIN)/python -c 'import mathjax, os; print(os.path.dirname(mathjax.__file__))')/static/mathjax/es5" _mathjax/mathjax-es5
+	mkdir -p _mathjax/mathjax && mv _mathjax/mathjax-es5 _mathjax/mathjax/es5
+
+book: $(STAMP) _mathjax/mathjax/es5/tex-chtml.js
+	$(BIN)/jupyter-book build . --all --builder html --warningiserror --keep-going
+
+test: book
+	$(BIN)/python -m pytest
+
+# Re-execute notebooks in place and store their outputs (NB=path/to/one.ipynb for one).
+notebooks: $(STAMP)
+	$(BIN)/python tools/run_notebooks.py $(NB)
+
+clean:
+	rm -rf _build _mathjax

@@ -1,0 +1,174 @@
+"""Two links meeting at a hinge: the intersection of two circles (the circle-circle dyad).
+
+Two joints ``p`` and ``q`` move in a known way; a link of length ``length_p`` hangs from ``p``
+and a link of length ``length_q`` from ``q``; the two links meet at the hinge J. J is an
+intersection of the circle of radius ``length_p`` about ``p`` and the circle of radius
+``length_q`` about ``q``. There are two intersections, mirror images in the line through
+``p`` and ``q``; the ``branch`` picks one of them geometrically:
+
+* ``branch = +1``: J lies to the left of the directed line p → q (counter-clockwise side);
+* ``branch = -1``: J lies to the right of it.
+
+In the four-bar (chapter 4) J is the coupler-rocker joint B, ``p`` the crank pin A and ``q`` the
+rocker pivot C.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import AssemblyError, require_branch, require_length
+from ..motion import AngleMotion, PointMotion
+
+__all__ = ["Hinge", "hinge", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
+
+ASSEMBLY_TOLERANCE = 1e-12
+"""Relative overlap of the circles accepted as touching (round-off), as a fraction of L_p + L_q."""
+
+SINGULAR_TOLERANCE = 1e-9
+"""A hinge is marked singular where |sin| of the angle between its links is below this."""
+
+
+@dataclass(frozen=True)
+class Hinge:
+    """The solved hinge J of two links, with the angles of both links.
+
+    Attributes
+    ----------
+    point : PointMotion
+        J with its velocity and acceleration (m, m/s, m/s²).
+    angle_p : AngleMotion
+        Angle of the link p → J (rad) with ω, α.
+    angle_q : AngleMotion
+        Angle of the link q → J (rad) with ω, α.
+    singular : ndarray of bool
+        True where p, q and J are collinear: the two links are in line, the velocities of J
+        are unbounded and are set to ``nan``.
+    """
+
+    point: PointMotion
+    angle_p: AngleMotion
+    angle_q: AngleMotion
+    singular: np.ndarray
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """z component of u × v for complex numbers as plane vectors: Im(conj(u)·v)."""
+    return u.real * v.imag - u.imag * v.real
+
+
+def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Scalar product of plane vectors given as complex numbers: Re(conj(u)·v)."""
+    return u.real * v.real + u.imag * v.imag
+
+
+def _solve_rates(arm_p: np.ndarray, arm_q: np.ndarray, rhs: np.ndarray, det: np.ndarray):
+    """Solve ``i·x·arm_p − i·y·arm_q = rhs`` for real x, y (Cramer's rule).
+
+    Dotting with ``arm_q`` removes y, dotting with ``arm_p`` removes x:
+    ``x = (arm_q · rhs) / (arm_p × arm_q)``, ``y = (arm_p · rhs) / (arm_p × arm_q)``.
+    """
+    return _dot(arm_q, rhs) / det, _dot(arm_p, rhs) / det
+
+
+def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int = 1,
+          angles=None) -> Hinge:
+    """Solve two links meeting at a hinge: J with |J − p| = L_p and |J − q| = L_q.
+
+    Parameters
+    ----------
+    p, q : PointMotion
+        The known joints (m, m/s, m/s²), arrays over the crank positions.
+    length_p, length_q : float
+        Lengths of the links p → J and q → J (m).
+    branch : int or array of int
+        +1: J to the left of the directed line p → q; -1: to the right. An array (one sign per
+        position) lets a mechanism hold an assembly mode through a change point.
+    angles : array_like, optional
+        The crank angles φ (rad) of the positions, only to name them in an
+        :class:`~mechanisms.errors.AssemblyError`.
+
+    Returns
+    -------
+    Hinge
+        J and the angles of both links, up to order ``min(p.order, q.order)``.
+
+    Raises
+    ------
+    AssemblyError
+        Where the circles do not meet: the joints are farther apart than L_p + L_q, or one
+        circle lies inside the other (distance below |L_p − L_q|).
+
+    Notes
+    -----
+    With ``d = q − p``, ``D = |d|``, J is found in the frame of the line p → q:
+    ``J = p + (m + i·branch·h)·d/D`` with the foot of the perpendicular
+    ``m = (D² + L_p² − L_q²)/(2D)`` and the height
+    ``h = √((L_p + L_q + D)(L_p + L_q − D)(D − |L_p − L_q|)(D + |L_p − L_q|))/(2D)`` (Heron), a
+    product in which the two small factors near a limit are computed directly; no ``arccos``.
+
+    Velocities: differentiating ``p + r_p = q + r_q`` (r_p = J − p, r_q = J − q) in Euler form,
+    ``iω_p r_p − iω_q r_q = v_q − v_p``; accelerations:
+    ``iα_p r_p − iα_q r_q = a_q − a_p + ω_p² r_p − ω_q² r_q``. Both are solved by Cramer's rule
+    with the determinant ``r_p × r_q`` = L_p L_q sin(θ_q − θ_p), zero where the links are in line
+    (chapter 4; the lecture's crank-rocker is the case p = A, q = C).
+    """
+    length_p = require_length("length_p", length_p)
+    length_q = require_length("length_q", length_q)
+    branch_array = np.asarray(branch)
+    if branch_array.ndim == 0:
+        side = float(require_branch(branch))
+    else:
+        if not np.all(np.isin(branch_array, (1, -1))):
+            require_branch(branch_array[~np.isin(branch_array, (1, -1))].ravel()[0].item())
+        side = branch_array.astype(float)
+    order = min(p.order, q.order)
+    d = q.value - p.value
+    distance = np.abs(d)
+    total = length_p + length_q
+    difference = abs(length_p - length_q)
+    slack_far = total - distance          # ≥ 0: the links reach across
+    slack_near = distance - difference    # ≥ 0: neither circle inside the other
+    tolerance = ASSEMBLY_TOLERANCE * total
+    far = slack_far < -tolerance
+    near = (slack_near < -tolerance) | (distance == 0.0)
+    if far.any() or near.any():
+        where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), d.shape)
+        reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "
+                  f"lengths {total:g} m)" if far.any() else
+                  "one circle lies inside the other (joints closer than the difference of the link "
+                  f"lengths {difference:g} m)")
+        if far.any() and near.any():
+            reason += (" and, elsewhere, one circle lies inside the other (joints closer than "
+                       f"{difference:g} m)")
+        raise AssemblyError(reason, None if where is None else where[far | near])
+    slack_far = np.maximum(slack_far, 0.0)    # the clamp is checked just above
+    slack_near = np.maximum(slack_near, 0.0)
+    height = np.sqrt((total + distance) * slack_far * slack_near * (distance + difference)) / (2.0 * distance)
+    foot = 0.5 * (distance + (length_p - length_q) * (length_p + length_q) / distance)
+    direction = d / distance
+    arm_p = (foot + 1j * side * height) * direction      # r_p = J − p
+    point = p.value + arm_p
+    arm_q = point - q.value                              # r_q = J − q
+    theta_p, theta_q = np.angle(arm_p), np.angle(arm_q)
+    # |sin| of the angle between the links is h·D/(L_p·L_q); the mask uses that ratio
+    singular = height * distance <= SINGULAR_TOLERANCE * length_p * length_q
+    singular = np.broadcast_to(singular, np.shape(point)).copy()
+    if order == 0:
+        return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
+    det = _cross(arm_p, arm_q)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        omega_p, omega_q = _solve_rates(arm_p, arm_q, q.velocity - p.velocity, det)
+        omega_p = np.where(singular, np.nan, omega_p)
+        omega_q = np.where(singular, np.nan, omega_q)
+        velocity = p.velocity + 1j * omega_p * arm_p
+        if order == 1:
+            return Hinge(PointMotion(point, velocity), AngleMotion(theta_p, omega_p),
+                         AngleMotion(theta_q, omega_q), singular)
+        rhs = q.acceleration - p.acceleration + omega_p**2 * arm_p - omega_q**2 * arm_q
+        alpha_p, alpha_q = _solve_rates(arm_p, arm_q, rhs, det)
+        acceleration = p.acceleration + (1j * alpha_p - omega_p**2) * arm_p
+    return Hinge(PointMotion(point, velocity, acceleration), AngleMotion(theta_p, omega_p, alpha_p),
+                 AngleMotion(theta_q, omega_q, alpha_q), singular)

@@ -1,0 +1,45 @@
+"""The driving crank: a link turning a full revolution about a fixed pivot."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InvalidParameterError, require_order
+from ..motion import AngleMotion, PointMotion, point_on_link
+
+__all__ = ["crank_angle", "crank_pin"]
+
+
+def crank_angle(phi, omega, alpha=0.0, order: int = 2) -> AngleMotion:
+    """The crank's angle φ with φ_t = ω and φ_tt = α, as arrays over the positions.
+
+    Parameters
+    ----------
+    phi : array_like
+        Crank angles φ (rad), counter-clockwise from +x.
+    omega : float or array_like
+        Angular velocity φ_t (rad/s) at each position.
+    alpha : float or array_like
+        Angular acceleration φ_tt (rad/s²) at each position.
+    order : int
+        0, 1 or 2: how many time derivatives to keep.
+    """
+    order = require_order(order)
+    phi = np.asarray(phi, dtype=float)
+    bad = ~np.isfinite(phi)
+    if bad.any():
+        raise InvalidParameterError("phi", np.asarray(phi)[bad][:3].tolist(), "finite crank angles (rad)")
+    if order == 0:
+        return AngleMotion(phi)
+    derivatives = []
+    for name, value in (("omega", omega), ("alpha", alpha))[:order]:
+        value = np.asarray(value, dtype=float)
+        if not np.all(np.isfinite(value)):
+            raise InvalidParameterError(name, value.tolist(), "finite (rad/s or rad/s²)")
+        derivatives.append(np.broadcast_to(value, phi.shape).astype(float))
+    return AngleMotion(phi, *derivatives)
+
+
+def crank_pin(angle: AngleMotion, length: float, pivot: complex = 0.0) -> PointMotion:
+    """The crank pin A at distance L1 from the pivot O: ``r_A = r_O + L1·exp(iφ)``."""
+    return point_on_link(complex(pivot), angle, length)

@@ -1,0 +1,193 @@
+"""Layer 6: the command-line tool, ``python -m mechanisms``.
+
+``table`` prints the kinematic table of a mechanism over crank positions, like the classic
+course programs do for 12 positions. Every mechanism class that sets ``cli_name`` appears
+as a ``table`` subcommand with its ``cli_parameters``; degrees at the interface, radians inside.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import math
+import sys
+import warnings
+from typing import Sequence
+
+import numpy as np
+
+from .base import Mechanism, Solution, registry
+from .errors import DeadCentreWarning, InvalidParameterError, MechanismError
+from .motion import Motion
+
+__all__ = ["main", "kinematic_table", "parse_angles", "parse_point"]
+
+
+def parse_angles(text: str) -> np.ndarray:
+    """``START:STOP:STEP`` in degrees (stop excluded) → crank angles in rad."""
+    try:
+        start, stop, step = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise InvalidParameterError("--angles", text, "START:STOP:STEP in degrees, e.g. 0:360:30") from None
+    if not all(math.isfinite(v) for v in (start, stop, step)) or step == 0 or (stop - start) / step <= 0:
+        raise InvalidParameterError("--angles", text, "START:STOP:STEP with a step that reaches STOP")
+    return np.radians(np.arange(start, stop, step))
+
+
+def parse_point(text: str) -> tuple[str, str, float, float]:
+    """``NAME=LINK:U[,V]`` → (name, link, u, v) with u, v in m."""
+    try:
+        name, rest = text.split("=", 1)
+        link, coords = rest.split(":", 1)
+        values = [float(v) for v in coords.split(",")]
+        if not name or not link or len(values) not in (1, 2) or not all(map(math.isfinite, values)):
+            raise ValueError
+    except ValueError:
+        raise InvalidParameterError("--point", text, "NAME=LINK:U or NAME=LINK:U,V (m), e.g. S2=coupler:0.09") from None
+    return name, link, values[0], values[1] if len(values) == 2 else 0.0
+
+
+def _pair(text: str) -> tuple[float, float]:
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"expected two numbers A,B, got {text!r}")
+    return float(parts[0]), float(parts[1])
+
+
+_KINDS = {"length": float, "number": float, "pair": _pair, "branch": int}
+
+
+def _number(value: float):
+    """A JSON-safe number: unbounded values (dead centres) become null."""
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def kinematic_table(mechanism: Mechanism, solution: Solution,
+                    points: Sequence[tuple[str, str, float, float]] = ()) -> list[dict]:
+    """Rows of the kinematic table: one dict per crank position, keys as in DESIGN.md's JSON."""
+    extra = {name: solution.point_on(link, u, v) for name, link, u, v in points}
+    all_points = {name: solution.point(name) for name in solution.point_names} | extra
+    rows = []
+    for i in range(len(solution)):
+        links = {}
+        for name in solution.angle_names:
+            a = solution.angle(name)
+            links[name] = {"angle_deg": _number(np.degrees(a.value[i])), "omega": _number(a.omega[i]),
+                           "alpha": _number(a.alpha[i])}
+        pts = {}
+        for name, p in all_points.items():
+            pts[name] = {"x": _number(p.x[i]), "y": _number(p.y[i]),
+                         "vx": _number(p.velocity[i].real), "vy": _number(p.velocity[i].imag),
+                         "ax": _number(p.acceleration[i].real), "ay": _number(p.acceleration[i].imag)}
+        sliders = {}
+        for name in solution.slider_names:
+            s: Motion = solution.slider(name)
+            sliders[name] = {"s": _number(s.value[i]), "v": _number(s.velocity[i]), "a": _number(s.acceleration[i])}
+            for key, values in solution.extras.get(name, {}).items():
+                sliders[name][key] = _number(values[i])
+        rows.append({"phi_deg": _number(np.degrees(solution.phi[i])), "links": links, "points": pts,
+                     "sliders": sliders})
+    return rows
+
+
+def _flat(row: dict) -> dict:
+    flat = {"phi_deg": row["phi_deg"]}
+    for group in ("links", "points", "sliders"):
+        for name, values in row[group].items():
+            for key, value in values.items():
+                flat[f"{name}.{key}"] = value
+    return flat
+
+
+_UNITS = {"angle_deg": "°", "omega": "1/s", "alpha": "1/s²", "x": "m", "y": "m", "vx": "m/s", "vy": "m/s",
+          "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s", "a": "m/s²", "coriolis": "m/s²"}
+
+
+def _text_block(title: str, rows: list[dict], group: str, name: str) -> str:
+    keys = list(rows[0][group][name])
+    headers = ["φ, °"] + [f"{k}, {_UNITS.get(k, '')}".rstrip(", ") for k in keys]
+    body = [[f"{r['phi_deg']:.1f}"] + ["—" if r[group][name][k] is None else f"{r[group][name][k]:.6g}"
+                                       for k in keys] for r in rows]
+    widths = [max(len(h), *(len(b[j]) for b in body)) for j, h in enumerate(headers)]
+    lines = [title, "  ".join(h.rjust(w) for h, w in zip(headers, widths))]
+    lines += ["  ".join(c.rjust(w) for c, w in zip(b, widths)) for b in body]
+    return "\n".join(lines)
+
+
+def _format(mechanism: Mechanism, omega: float, alpha: float, rows: list[dict], fmt: str) -> str:
+    if fmt == "json":
+        return json.dumps({"mechanism": mechanism.cli_name, "parameters": mechanism.parameters() |
+                           {"omega": omega, "alpha": alpha}, "rows": rows}, indent=1, ensure_ascii=False)
+    if fmt == "csv":
+        out = io.StringIO()
+        flats = [_flat(r) for r in rows]
+        writer = csv.DictWriter(out, fieldnames=list(flats[0]), lineterminator="\n")
+        writer.writeheader()
+        writer.writerows({k: ("" if v is None else v) for k, v in f.items()} for f in flats)
+        return out.getvalue().rstrip("\n")
+    blocks = [f"{mechanism.describe()}; omega = {omega:g} 1/s, alpha = {alpha:g} 1/s²"]
+    for group, label in (("links", "link"), ("points", "point"), ("sliders", "slider")):
+        for name in rows[0][group]:
+            blocks.append(_text_block(f"{label} {name}", rows, group, name))
+    return "\n\n".join(blocks)
+
+
+def _table(args: argparse.Namespace) -> str:
+    cls = registry[args.mechanism]
+    mechanism = cls(**{p.name: getattr(args, p.name) for p in cls.cli_parameters})
+    if not args.angles and args.positions < 1:
+        raise InvalidParameterError("--positions", args.positions, "a whole number ≥ 1")
+    phi = parse_angles(args.angles) if args.angles else np.radians(np.arange(args.positions) * 360.0 / args.positions)
+    points = [parse_point(p) for p in args.point]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeadCentreWarning)  # unbounded values print as — / null
+        solution = mechanism.solve(phi, args.omega, args.alpha, order=2)
+    for name, link, _, _ in points:
+        if link not in cls.links:
+            raise InvalidParameterError("--point", f"{name}={link}", f"on one of the links {', '.join(cls.links)}")
+    return _format(mechanism, args.omega, args.alpha, kinematic_table(mechanism, solution, points), args.format)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``python -m mechanisms``."""
+    parser = argparse.ArgumentParser(prog="python -m mechanisms",
+                                     description="Kinematics of planar linkage mechanisms: the book's tool.")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    table = commands.add_parser("table", help="kinematic table of a mechanism over crank positions",
+                                description="Print the kinematic table of a mechanism over crank positions.")
+    kinds = table.add_subparsers(dest="mechanism", metavar="MECHANISM")
+    for name, cls in sorted(registry.items()):
+        sub = kinds.add_parser(name, help=(cls.__doc__ or name).strip().splitlines()[0],
+                               description=(cls.__doc__ or name).strip().splitlines()[0])
+        for p in cls.cli_parameters:
+            sub.add_argument(f"--{p.name.replace('_', '-')}", dest=p.name, type=_KINDS[p.kind],
+                             required=p.default is None, default=p.default, help=p.help)
+        sub.add_argument("--omega", type=float, required=True, help="crank angular velocity ω1, 1/s")
+        sub.add_argument("--alpha", type=float, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
+        where = sub.add_mutually_exclusive_group()
+        where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
+        where.add_argument("--positions", type=int, default=12, help="N positions evenly over a turn (default 12)")
+        sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,V]",
+                         help="a point fixed to LINK, U m along it from its first joint, V m to its left")
+        sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status (0 ok, 2 bad input)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return 0
+    if args.command == "table" and args.mechanism is None:
+        parser.parse_args(["table", "--help"])
+    try:
+        print(_table(args))
+    except MechanismError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    return 0

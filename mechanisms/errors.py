@@ -1,0 +1,126 @@
+"""Errors and warnings of the package.
+
+Every error names what a student can act on: the parameter and its value, or the crank
+angles where a mechanism cannot be assembled, and why.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = [
+    "MechanismError",
+    "InvalidParameterError",
+    "AssemblyError",
+    "DeadCentreWarning",
+    "require_length",
+    "require_finite",
+    "require_branch",
+    "require_order",
+    "describe_angles",
+]
+
+
+class MechanismError(Exception):
+    """Base class of the errors raised by :mod:`mechanisms`."""
+
+
+class InvalidParameterError(MechanismError, ValueError):
+    """A parameter has a value the model cannot use.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name as the caller wrote it (``"crank"``, ``"rod"`` ...).
+    value : object
+        The value that was given.
+    requirement : str
+        What is required, in words ("a finite length > 0 m").
+    """
+
+    def __init__(self, name: str, value: object, requirement: str):
+        self.name = name
+        self.value = value
+        self.requirement = requirement
+        super().__init__(f"{name} must be {requirement}: got {name} = {value!r}")
+
+
+class AssemblyError(MechanismError, ValueError):
+    """The mechanism cannot be assembled at some crank angles.
+
+    Parameters
+    ----------
+    reason : str
+        Why it cannot be assembled ("the rod cannot reach the guide").
+    angles : array_like of float, optional
+        The crank angles (rad) where assembly fails; named in the message in degrees.
+    valid_range : tuple of float, optional
+        The crank-angle interval (rad) in which the mechanism assembles, if known.
+    """
+
+    def __init__(self, reason: str, angles=None, valid_range: tuple[float, float] | None = None):
+        self.reason = reason
+        self.angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
+        self.valid_range = valid_range
+        message = reason
+        if self.angles is not None and self.angles.size:
+            message += f" at crank angle(s) {describe_angles(self.angles)}"
+        if valid_range is not None:
+            lo, hi = (math.degrees(v) for v in valid_range)
+            message += f"; it assembles only for crank angles in [{lo:.4g}°, {hi:.4g}°]"
+        super().__init__(message)
+
+
+class DeadCentreWarning(UserWarning):
+    """Velocities or accelerations are unbounded at some crank angles (a dead centre).
+
+    The solution marks these angles in ``Solution.singular`` and sets the unbounded values
+    to ``inf``/``nan`` on purpose; this warning says so, so nothing is NaN silently.
+    """
+
+
+def describe_angles(angles, limit: int = 6) -> str:
+    """Return crank angles (rad) as a short list in degrees, for messages."""
+    deg = np.degrees(np.atleast_1d(np.asarray(angles, dtype=float)))
+    shown = ", ".join(f"{d:.6g}°" for d in deg[:limit])
+    if deg.size > limit:
+        shown += f", … ({deg.size} angles in all)"
+    return shown
+
+
+def require_finite(name: str, value) -> float:
+    """Return ``value`` as float, or raise :class:`InvalidParameterError` if it is not finite."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, value, "a finite number") from None
+    if not math.isfinite(number):
+        raise InvalidParameterError(name, value, "a finite number")
+    return number
+
+
+def require_length(name: str, value) -> float:
+    """Return ``value`` as float, or raise if it is not a finite length > 0 (m)."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, value, "a finite length > 0 m") from None
+    if not math.isfinite(number) or number <= 0.0:
+        raise InvalidParameterError(name, value, "a finite length > 0 m")
+    return number
+
+
+def require_branch(value, name: str = "branch") -> int:
+    """Return the branch as int +1 or -1, or raise :class:`InvalidParameterError`."""
+    if value in (1, -1) and not isinstance(value, bool):
+        return int(value)
+    raise InvalidParameterError(name, value, "+1 or -1")
+
+
+def require_order(value) -> int:
+    """Return the derivative order as int 0, 1 or 2, or raise."""
+    if value in (0, 1, 2) and not isinstance(value, bool):
+        return int(value)
+    raise InvalidParameterError("order", value, "0 (positions), 1 (+ velocities) or 2 (+ accelerations)")

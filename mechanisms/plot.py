@@ -1,0 +1,277 @@
+"""Layer 6: figures of the book — one style, drawings of mechanisms, diagrams, animations.
+
+Every figure of the book is made here, so a notebook cell that makes a figure is two or three
+lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors are always
+:data:`VELOCITY_COLOUR`, accelerations :data:`ACCELERATION_COLOUR`.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Sequence
+
+import matplotlib
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib import animation
+from matplotlib.patches import Polygon, Rectangle
+
+from .base import Bar, Block, Ground, Guide, Mechanism, Solution
+from .motion import PointMotion
+
+__all__ = [
+    "ROLE_COLOURS",
+    "VELOCITY_COLOUR",
+    "ACCELERATION_COLOUR",
+    "use_book_style",
+    "draw",
+    "trajectories",
+    "vectors_along",
+    "diagram",
+    "animate",
+]
+
+ROLE_COLOURS = {
+    "frame": "#4d4d4d",
+    "crank": "#1f77b4",
+    "coupler": "#d62728",
+    "rocker": "#2ca02c",
+    "lever": "#2ca02c",
+    "slider": "#9467bd",
+    "point": "#ff7f0e",
+}
+VELOCITY_COLOUR = "#17becf"
+ACCELERATION_COLOUR = "#e377c2"
+
+BOOK_STYLE = {
+    "figure.figsize": (6.4, 4.0),
+    "figure.dpi": 100,
+    "savefig.dpi": 100,
+    "font.size": 10,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "legend.frameon": False,
+    "animation.embed_limit": 40.0,
+    "svg.hashsalt": "mechanisms",
+}
+
+
+def use_book_style() -> None:
+    """Set the book's matplotlib style (called on import of :mod:`mechanisms.plot`)."""
+    matplotlib.rcParams.update(BOOK_STYLE)
+
+
+use_book_style()
+
+
+def _new_axes(ax, equal: bool = True):
+    if ax is None:
+        _, ax = plt.subplots()
+    if equal:
+        ax.set_aspect("equal")
+    return ax
+
+
+def _pivot_symbol(ax, point: complex, size: float) -> None:
+    """A frame pivot: a small triangle on a hatched base."""
+    x, y = point.real, point.imag
+    triangle = Polygon([(x, y), (x - size, y - 1.6 * size), (x + size, y - 1.6 * size)], closed=True,
+                       facecolor="white", edgecolor=ROLE_COLOURS["frame"], lw=1.2, zorder=2)
+    ax.add_patch(triangle)
+    ax.add_patch(Rectangle((x - 1.6 * size, y - 2.2 * size), 3.2 * size, 0.6 * size, facecolor="none",
+                           edgecolor=ROLE_COLOURS["frame"], hatch="////", lw=0.0, zorder=1))
+
+
+def _guide_symbol(ax, through: complex, angle: float, half_length: float, size: float) -> None:
+    direction = np.exp(1j * angle)
+    normal = 1j * direction
+    a, b = through - half_length * direction, through + half_length * direction
+    ax.plot([a.real, b.real], [a.imag, b.imag], color=ROLE_COLOURS["frame"], lw=1.2, zorder=1)
+    corners = [a, b, b - 0.7 * size * normal, a - 0.7 * size * normal]
+    ax.add_patch(Polygon([(c.real, c.imag) for c in corners], closed=True, facecolor="none",
+                         edgecolor=ROLE_COLOURS["frame"], hatch="////", lw=0.0, zorder=0))
+
+
+def _block_symbol(ax, centre: complex, angle: float, size: float) -> None:
+    direction = np.exp(1j * angle)
+    normal = 1j * direction
+    corners = [centre + s * 1.4 * size * direction + t * 0.8 * size * normal for s, t in
+               ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+    ax.add_patch(Polygon([(c.real, c.imag) for c in corners], closed=True, facecolor="#efe7f7",
+                         edgecolor=ROLE_COLOURS["slider"], lw=1.5, zorder=3))
+
+
+def _extent(solution: Solution) -> float:
+    points = np.concatenate([np.ravel(solution.point(n).value) for n in solution.point_names])
+    span = np.ptp(points.real) + np.ptp(points.imag) if points.size else 1.0
+    return float(span) or 1.0
+
+
+def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labels: bool = True,
+         size: float | None = None, guide_half_length: float | None = None):
+    """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        What to draw (its :meth:`~mechanisms.base.Mechanism.scheme`).
+    solution : Solution
+        A solution with at least positions (``order=0`` is enough).
+    index : int
+        Which crank position of the solution to draw.
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if omitted.
+    labels : bool
+        Write the joint names next to the joints.
+    size : float, optional
+        Size of hinges and symbols (m); by default 3 % of the mechanism's extent.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _new_axes(ax)
+    size = size or 0.03 * _extent(solution)
+    where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
+    guide_half_length = guide_half_length or 0.6 * _extent(solution)
+    artists = []
+    for item in mechanism.scheme():
+        if isinstance(item, Guide):
+            _guide_symbol(ax, item.through, item.angle, guide_half_length, size)
+        elif isinstance(item, Ground):
+            _pivot_symbol(ax, where[item.joint], size)
+        elif isinstance(item, Bar):
+            pts = [where[j] for j in item.joints]
+            artists += ax.plot([p.real for p in pts], [p.imag for p in pts], color=ROLE_COLOURS.get(item.role, "k"),
+                               lw=3.0, solid_capstyle="round", zorder=2, label=item.link)
+        elif isinstance(item, Block):
+            angle = item.angle if isinstance(item.angle, (int, float)) else float(
+                solution.angle(item.angle).value[index])
+            _block_symbol(ax, where[item.joint], angle, size)
+    hinges = np.array(list(where.values()))
+    ax.plot(hinges.real, hinges.imag, "o", ms=6, mfc="white", mec="black", mew=1.2, zorder=4)
+    if labels:
+        for name, p in where.items():
+            ax.annotate(name, (p.real, p.imag), xytext=(5, 5), textcoords="offset points", fontsize=10,
+                        zorder=5)
+    ax.set_xlabel("x, m")
+    ax.set_ylabel("y, m")
+    return ax
+
+
+def trajectories(solution: Solution, points: dict[str, PointMotion] | Sequence[str], ax=None,
+                 colours: Iterable[str] | None = None):
+    """Draw the paths of points: named joints of the solution or given point motions.
+
+    Parameters
+    ----------
+    solution : Solution
+        The solution (positions over the crank angles).
+    points : sequence of str or dict
+        Joint names, or ``{label: PointMotion}`` (e.g. from ``solution.point_on``).
+    """
+    ax = _new_axes(ax)
+    if not isinstance(points, dict):
+        points = {name: solution.point(name) for name in points}
+    colours = iter(colours) if colours is not None else None
+    for label, motion in points.items():
+        kwargs = {"color": next(colours)} if colours is not None else {}
+        ax.plot(motion.x, motion.y, lw=1.2, label=label, **kwargs)
+    ax.set_xlabel("x, m")
+    ax.set_ylabel("y, m")
+    return ax
+
+
+def vectors_along(motion: PointMotion, every: int = 1, ax=None, scale_velocity: float | None = None,
+                  scale_acceleration: float | None = None, velocity: bool = True, acceleration: bool = True):
+    """Velocity and acceleration vectors drawn at points of a trajectory.
+
+    The vectors are scaled so that the longest is 15 % of the path's extent unless scales
+    (m per m/s, m per m/s²) are given; the book states the scale in the caption.
+    """
+    ax = _new_axes(ax)
+    sel = slice(None, None, every)
+    p = motion.value[sel]
+    extent = (np.ptp(motion.x) + np.ptp(motion.y)) or 1.0
+    for show, vec, colour, scale in ((velocity, motion.velocity, VELOCITY_COLOUR, scale_velocity),
+                                     (acceleration, motion.acceleration, ACCELERATION_COLOUR, scale_acceleration)):
+        if not show or vec is None:
+            continue
+        v = vec[sel]
+        scale = scale or 0.15 * extent / (np.max(np.abs(v)) or 1.0)
+        ax.quiver(p.real, p.imag, (v * scale).real, (v * scale).imag, angles="xy", scale_units="xy", scale=1.0,
+                  color=colour, width=0.004, zorder=3)
+    return ax
+
+
+def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None, step_deg: int = 30):
+    """Quantities against the crank angle (degrees, ticks every ``step_deg``).
+
+    Parameters
+    ----------
+    phi : ndarray
+        Crank angles (rad).
+    curves : dict
+        ``{label: values}``; the label goes into the legend when there is more than one.
+    ylabel : str
+        Axis label with its unit.
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.4, 3.2))
+    deg = np.degrees(phi)
+    for label, values in curves.items():
+        ax.plot(deg, values, label=label)
+    lo, hi = np.floor(deg.min() / step_deg) * step_deg, np.ceil(deg.max() / step_deg) * step_deg
+    ax.set_xticks(np.arange(lo, hi + 0.5 * step_deg, step_deg))
+    ax.set_xlim(deg.min(), deg.max())
+    ax.set_xlabel("crank angle φ, °")
+    ax.set_ylabel(ylabel)
+    if len(curves) > 1:
+        ax.legend()
+    return ax
+
+
+def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] = (), frames: int | None = None,
+            interval: int = 80, labels: bool = True, title: str | None = None) -> str:
+    """An animation of the mechanism over the solution's positions, as HTML that plays offline.
+
+    Parameters
+    ----------
+    mechanism, solution
+        What to animate; the solution's positions are the frames (36–72 is plenty).
+    paths : sequence of str
+        Joint names whose whole trajectories are drawn underneath.
+    frames : int, optional
+        Use only this many evenly spaced positions.
+    interval : int
+        Milliseconds per frame.
+
+    Returns
+    -------
+    str
+        HTML from :meth:`matplotlib.animation.Animation.to_jshtml`; the figure is closed.
+        Show it with ``IPython.display.HTML``; the play controls work in the static site.
+    """
+    n = len(solution)
+    chosen = np.linspace(0, n - 1, frames).round().astype(int) if frames else np.arange(n)
+    fig, ax = plt.subplots(figsize=(6.0, 4.0))
+    pts = np.concatenate([np.ravel(solution.point(p).value) for p in solution.point_names])
+    margin = 0.12 * _extent(solution)
+    limits = (pts.real.min() - margin, pts.real.max() + margin, pts.imag.min() - 2 * margin, pts.imag.max() + margin)
+
+    def frame(k):
+        ax.clear()
+        if paths:
+            trajectories(solution, list(paths), ax=ax, colours=["0.7"] * len(paths))
+        draw(mechanism, solution, chosen[k], ax=ax, labels=labels)
+        ax.set_xlim(limits[0], limits[1])
+        ax.set_ylim(limits[2], limits[3])
+        ax.set_title(title or f"φ = {np.degrees(solution.phi[chosen[k]]) % 360:.0f}°")
+        return []
+
+    anim = animation.FuncAnimation(fig, frame, frames=len(chosen), interval=interval, blit=False)
+    html = anim.to_jshtml(default_mode="loop")
+    plt.close(fig)
+    return html

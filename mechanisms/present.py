@@ -1,0 +1,53 @@
+"""Layer 6: tables for people — Markdown tables in notebooks and the site."""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+__all__ = ["MarkdownTable", "markdown_table"]
+
+
+class MarkdownTable:
+    """A table that a notebook shows as Markdown (and as the same text in plain output)."""
+
+    def __init__(self, text: str):
+        self.text = text
+
+    def _repr_markdown_(self) -> str:
+        return self.text
+
+    def __repr__(self) -> str:
+        return self.text
+
+    __str__ = __repr__
+
+
+def _cell(value, fmt: str) -> str:
+    if isinstance(value, str):
+        return value
+    return format(value, fmt)
+
+
+def markdown_table(headers: Sequence[str], rows: Sequence[Sequence], formats: str | Sequence[str] = ".4g",
+                   align: str | None = None) -> MarkdownTable:
+    """Build a Markdown table.
+
+    Parameters
+    ----------
+    headers : sequence of str
+        Column headings, with units (``"ω2, 1/s"``).
+    rows : sequence of sequences
+        The cells; numbers are formatted, strings kept.
+    formats : str or sequence of str
+        Format spec for numbers, one for all columns or one per column (``".3f"``).
+    align : str, optional
+        One letter per column: ``l``, ``c`` or ``r`` (default: right).
+    """
+    if isinstance(formats, str):
+        formats = [formats] * len(headers)
+    align = align or "r" * len(headers)
+    rule = {"l": ":---", "c": ":---:", "r": "---:"}
+    lines = ["| " + " | ".join(headers) + " |", "|" + "|".join(rule[a] for a in align) + "|"]
+    for row in rows:
+        lines.append("| " + " | ".join(_cell(v, f) for v, f in zip(row, formats)) + " |")
+    return MarkdownTable("\n".join(lines))

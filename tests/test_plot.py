@@ -1,0 +1,58 @@
+"""Tests of the figures (mechanisms.plot) and tables (mechanisms.present)."""
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import mechanisms as mech
+from mechanisms import plot
+from mechanisms_for_tests import ScotchYoke
+
+PHI = np.radians(np.arange(0, 360, 30.0))
+
+
+def test_draw_puts_every_joint_and_label():
+    yoke = ScotchYoke(0.1)
+    sol = yoke.solve(PHI, order=0)
+    ax = plot.draw(yoke, sol, index=1)
+    labels = sorted(t.get_text() for t in ax.texts)
+    assert labels == ["A", "B", "O"]
+    hinge_line = [ln for ln in ax.lines if ln.get_marker() == "o"][0]
+    np.testing.assert_allclose(hinge_line.get_xdata(), [0.0, 0.1 * np.cos(PHI[1]), 0.1 * np.cos(PHI[1])], atol=1e-15)
+    assert ax.get_aspect() == 1.0
+    crank_bar = [ln for ln in ax.lines if ln.get_label() == "crank"][0]
+    assert crank_bar.get_color() == plot.ROLE_COLOURS["crank"]
+    plt.close("all")
+
+
+def test_animation_is_html_with_controls_and_closes_its_figure():
+    yoke = ScotchYoke(0.1)
+    sol = yoke.solve(PHI, order=0)
+    plt.close("all")
+    html = plot.animate(yoke, sol, paths=["A"], frames=6)
+    assert "<script" in html and "anim-buttons" in html and "anim-slider" in html
+    assert html.count("data:image/png;base64") >= 6
+    assert plt.get_fignums() == []
+
+
+def test_diagram_ticks_every_30_degrees():
+    ax = plot.diagram(PHI, {"s": np.cos(PHI), "v": np.sin(PHI)}, "s, m")
+    ticks = ax.get_xticks()
+    assert np.all(np.diff(ticks) == 30.0) and ticks[0] == 0.0
+    assert ax.get_legend() is not None
+    plt.close("all")
+
+
+def test_vectors_along_uses_book_colours():
+    sol = ScotchYoke(0.1).solve(PHI, 1.0)
+    ax = plot.vectors_along(sol.point("A"), every=2)
+    colours = [tuple(np.round(q.get_facecolor()[0][:3], 3)) for q in ax.collections]
+    from matplotlib.colors import to_rgb
+    assert colours == [tuple(np.round(to_rgb(plot.VELOCITY_COLOUR), 3)),
+                       tuple(np.round(to_rgb(plot.ACCELERATION_COLOUR), 3))]
+    plt.close("all")
+
+
+def test_markdown_table():
+    table = mech.markdown_table(["φ, °", "s, m"], [[0, 0.38], [30, "—"]], [".0f", ".3f"])
+    assert table._repr_markdown_() == "| φ, ° | s, m |\n|---:|---:|\n| 0 | 0.380 |\n| 30 | — |"
+    assert str(table) == table.text

@@ -1,0 +1,39 @@
+"""Execute notebooks in place and store their outputs, as nbval will compare them.
+
+Usage: python tools/run_notebooks.py [NOTEBOOK ...]   (default: every notebook in book/ and exercises/)
+
+A notebook may be written as a MyST/percent text file and paired with jupytext; this script
+executes the .ipynb with the ``python3`` kernel, without timing metadata, so outputs are stable.
+"""
+
+import pathlib
+import sys
+import time
+
+import nbformat
+from nbclient import NotebookClient
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+
+def run(path: pathlib.Path) -> float:
+    nb = nbformat.read(path, as_version=4)
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    start = time.perf_counter()
+    NotebookClient(nb, kernel_name="python3", timeout=600, record_timing=False,
+                   resources={"metadata": {"path": str(path.parent)}}).execute()
+    for cell in nb.cells:
+        cell.metadata.pop("execution", None)
+    nbformat.write(nb, path)
+    return time.perf_counter() - start
+
+
+def main(args: list[str]) -> None:
+    paths = [pathlib.Path(a) for a in args] or sorted(
+        p for d in ("book", "exercises") for p in (ROOT / d).rglob("*.ipynb") if ".ipynb_checkpoints" not in p.parts)
+    for path in paths:
+        print(f"{path}: {run(path):.1f} s", flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
