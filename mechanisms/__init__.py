@@ -13,13 +13,18 @@ Layers, bottom up (a module imports only from layers below it):
 from . import motion
 from .base import Mechanism, Solution
 from .errors import AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError
-from .motion import AngleMotion, Motion, PointMotion, lagrange_point, plane_motion, point_on_link, polar
+from .motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point, plane_motion, point_on_link, polar,
+                     translated_point)
 from .links import LINK_TYPES, LinkType, harmonic, link_type
 
 # mechanisms (layer 3), one line per chapter -------------------------------------------
 # chapter 3:
+from .crank_slider import CrankSlider  # noqa: E402
 # chapter 4:
+from .four_bar import FourBar  # noqa: E402
+from .lambda_mechanism import LambdaMechanism  # noqa: E402
 # chapter 5:
+from .slotted import RockerInBlock, Shaper, SliderOnCoupler, SlottedLever, SlottedRockers  # noqa: E402
 # ---------------------------------------------------------------------------------------
 
 from . import verify  # noqa: E402  (layer 5, after the mechanisms it checks)

@@ -7,6 +7,7 @@ lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors 
 
 from __future__ import annotations
 
+import re
 from typing import Iterable, Sequence
 
 import matplotlib
@@ -29,6 +30,10 @@ __all__ = [
     "vectors_along",
     "diagram",
     "animate",
+    "link_snapshots",
+    "animate_links",
+    "annotate_angle",
+    "annotate_length",
 ]
 
 ROLE_COLOURS = {
@@ -40,6 +45,8 @@ ROLE_COLOURS = {
     "slider": "#9467bd",
     "point": "#ff7f0e",
 }
+PATH_COLOURS = ("#8c564b", "#ff7f0e", "#7f7f7f", "#bcbd22", "#1f77b4", "#2ca02c")
+"""Colours of trajectories, in order (distinct from the vector colours)."""
 VELOCITY_COLOUR = "#17becf"
 ACCELERATION_COLOUR = "#e377c2"
 
@@ -94,12 +101,16 @@ def _guide_symbol(ax, through: complex, angle: float, half_length: float, size: 
                          edgecolor=ROLE_COLOURS["frame"], hatch="////", lw=0.0, zorder=0))
 
 
-def _block_symbol(ax, centre: complex, angle: float, size: float) -> None:
+def _block_corners(centre: complex, angle: float, size: float) -> list[tuple[float, float]]:
     direction = np.exp(1j * angle)
     normal = 1j * direction
     corners = [centre + s * 1.4 * size * direction + t * 0.8 * size * normal for s, t in
                ((-1, -1), (1, -1), (1, 1), (-1, 1))]
-    ax.add_patch(Polygon([(c.real, c.imag) for c in corners], closed=True, facecolor="#efe7f7",
+    return [(c.real, c.imag) for c in corners]
+
+
+def _block_symbol(ax, centre: complex, angle: float, size: float) -> None:
+    ax.add_patch(Polygon(_block_corners(centre, angle, size), closed=True, facecolor="#efe7f7",
                          edgecolor=ROLE_COLOURS["slider"], lw=1.5, zorder=3))
 
 
@@ -161,6 +172,30 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labe
     return ax
 
 
+def annotate_angle(ax, vertex: complex, start: float, stop: float, label: str, radius: float,
+                   colour: str = "0.25") -> None:
+    """Mark an angle on a drawing: an arc from ``start`` to ``stop`` (rad) about ``vertex``, labelled.
+
+    A dotted reference line is drawn along the ``start`` direction (usually the +x axis).
+    """
+    sweep = np.linspace(start, stop, 40)
+    arc = vertex + radius * np.exp(1j * sweep)
+    ax.plot(arc.real, arc.imag, color=colour, lw=0.9)
+    ref = vertex + 1.5 * radius * np.exp(1j * start)
+    ax.plot([vertex.real, ref.real], [vertex.imag, ref.imag], color=colour, lw=0.7, ls=":")
+    tip = arc[-1] - arc[-2]
+    ax.annotate("", xy=(arc[-1].real, arc[-1].imag), xytext=(arc[-1].real - tip.real, arc[-1].imag - tip.imag),
+                arrowprops={"arrowstyle": "->", "color": colour, "lw": 0.9})
+    middle = vertex + 1.25 * radius * np.exp(1j * 0.5 * (start + stop))
+    ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11, color=colour)
+
+
+def annotate_length(ax, first: complex, second: complex, label: str, offset: float) -> None:
+    """Write a length's symbol beside the segment first–second, ``offset`` m to its left."""
+    middle = 0.5 * (first + second) + offset * 1j * np.exp(1j * np.angle(second - first))
+    ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11)
+
+
 def trajectories(solution: Solution, points: dict[str, PointMotion] | Sequence[str], ax=None,
                  colours: Iterable[str] | None = None):
     """Draw the paths of points: named joints of the solution or given point motions.
@@ -175,10 +210,9 @@ def trajectories(solution: Solution, points: dict[str, PointMotion] | Sequence[s
     ax = _new_axes(ax)
     if not isinstance(points, dict):
         points = {name: solution.point(name) for name in points}
-    colours = iter(colours) if colours is not None else None
+    colours = iter(colours if colours is not None else PATH_COLOURS * 4)
     for label, motion in points.items():
-        kwargs = {"color": next(colours)} if colours is not None else {}
-        ax.plot(motion.x, motion.y, lw=1.2, label=label, **kwargs)
+        ax.plot(motion.x, motion.y, lw=1.2, label=label, color=next(colours))
     ax.set_xlabel("x, m")
     ax.set_ylabel("y, m")
     return ax
@@ -233,6 +267,34 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None
     return ax
 
 
+# matplotlib's player loads Font Awesome from a CDN for its button icons; the book must work
+# offline, so the link is dropped and each icon becomes a plain character.
+_ICONS = {"fa fa-minus": "−", "fa fa-fast-backward": "⇤", "fa fa-step-backward": "‹",
+          "fa fa-play fa-flip-horizontal": "◀", "fa fa-pause": "||", "fa fa-play": "▶",
+          "fa fa-step-forward": "›", "fa fa-fast-forward": "⇥", "fa fa-plus": "+"}
+
+
+def _offline(html: str) -> str:
+    """The animation HTML with no request outside the page (no icon font from a CDN)."""
+    html = re.sub(r'<link rel="stylesheet"\s+href="https://[^"]*font-awesome[^"]*">', "", html)
+    for icon, text in _ICONS.items():
+        html = html.replace(f'<i class="{icon}"></i>', text)
+    return html
+
+
+def _to_html(fig, frame, count: int, interval: int) -> str:
+    """Run ``frame(k)`` for k = 0 … count−1 into an HTML/JavaScript animation; close the figure."""
+    anim = animation.FuncAnimation(fig, frame, frames=count, interval=interval, blit=False)
+    html = _offline(anim.to_jshtml(default_mode="loop"))
+    plt.close(fig)
+    return html
+
+
+def _limits(values: np.ndarray, margin: float) -> tuple[float, float, float, float]:
+    return (values.real.min() - margin, values.real.max() + margin,
+            values.imag.min() - 2 * margin, values.imag.max() + margin)
+
+
 def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] = (), frames: int | None = None,
             interval: int = 80, labels: bool = True, title: str | None = None) -> str:
     """An animation of the mechanism over the solution's positions, as HTML that plays offline.
@@ -258,8 +320,7 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] = (),
     chosen = np.linspace(0, n - 1, frames).round().astype(int) if frames else np.arange(n)
     fig, ax = plt.subplots(figsize=(6.0, 4.0))
     pts = np.concatenate([np.ravel(solution.point(p).value) for p in solution.point_names])
-    margin = 0.12 * _extent(solution)
-    limits = (pts.real.min() - margin, pts.real.max() + margin, pts.imag.min() - 2 * margin, pts.imag.max() + margin)
+    limits = _limits(pts, 0.12 * _extent(solution))
 
     def frame(k):
         ax.clear()
@@ -269,9 +330,85 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] = (),
         ax.set_xlim(limits[0], limits[1])
         ax.set_ylim(limits[2], limits[3])
         ax.set_title(title or f"φ = {np.degrees(solution.phi[chosen[k]]) % 360:.0f}°")
-        return []
 
-    anim = animation.FuncAnimation(fig, frame, frames=len(chosen), interval=interval, blit=False)
-    html = anim.to_jshtml(default_mode="loop")
-    plt.close(fig)
-    return html
+    return _to_html(fig, frame, len(chosen), interval)
+
+
+def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax=None, every: int = 1,
+                   paths: bool = True):
+    """A link drawn as a bar between two of its points at several instants, faded in time order.
+
+    Parameters
+    ----------
+    first, second : PointMotion
+        Two points of the link (positions over time, m).
+    role : str
+        The link's role, for its colour (``crank``, ``rocker``, ``coupler``, ``slider`` …).
+    every : int
+        Draw every ``every``-th instant.
+    paths : bool
+        Also draw the trajectories of both points.
+    """
+    ax = _new_axes(ax)
+    colour = ROLE_COLOURS.get(role, "k")
+    index = np.arange(0, first.value.size, every)
+    if role == "slider":  # a block that translates: draw the block, its guide and the travel
+        span = (np.ptp(first.x) + np.ptp(first.y)) or 0.01
+        angle = float(np.angle(second.value[0] - first.value[0]))
+        _guide_symbol(ax, complex(np.mean(first.value)) - 0.06 * span * 1j * np.exp(1j * angle), angle,
+                      0.7 * span, 0.05 * span)
+        for rank, i in enumerate(index):
+            block = Polygon(_block_corners(first.value[i], angle, 0.05 * span), closed=True, facecolor="none",
+                            edgecolor=colour, lw=1.5, alpha=min(1.0, 0.2 + 0.8 * rank / max(len(index) - 1, 1)))
+            ax.add_patch(block)
+        centre = complex(np.mean(first.value))
+        ax.set_ylim(centre.imag - 0.35 * span, centre.imag + 0.35 * span)
+    else:
+        for rank, i in enumerate(index):
+            p, q = first.value[i], second.value[i]
+            ax.plot([p.real, q.real], [p.imag, q.imag], color=colour, lw=2.5,
+                    alpha=min(1.0, 0.2 + 0.8 * rank / max(len(index) - 1, 1)), solid_capstyle="round")
+    if paths:
+        for motion in (first, second):
+            ax.plot(motion.x, motion.y, color="0.6", lw=0.8, ls="--")
+    ax.set_xlabel("x, m")
+    ax.set_ylabel("y, m")
+    return ax
+
+
+def animate_links(links: dict[str, tuple[PointMotion, PointMotion, str]], times: np.ndarray, interval: int = 80) -> str:
+    """An animation of links given by the motions of two of their points (no mechanism needed).
+
+    Parameters
+    ----------
+    links : dict
+        ``{label: (first point, second point, role)}``; each link is drawn as a bar.
+    times : ndarray
+        The instants (s), one frame each, shown in the title.
+
+    Returns
+    -------
+    str
+        HTML that plays offline; the figure is closed.
+    """
+    fig, ax = plt.subplots(figsize=(6.0, 4.0))
+    everything = np.concatenate([np.concatenate([p.value, q.value]) for p, q, _ in links.values()])
+    limits = _limits(everything, 0.08 * (np.ptp(everything.real) + np.ptp(everything.imag)))
+
+    def frame(k):
+        ax.clear()
+        for label, (p, q, role) in links.items():
+            ax.plot([p.value[k].real, q.value[k].real], [p.value[k].imag, q.value[k].imag],
+                    color=ROLE_COLOURS.get(role, "k"), lw=3, solid_capstyle="round", label=label)
+            ax.plot(q.x[: k + 1], q.y[: k + 1], color="0.7", lw=0.8)
+            ax.plot([p.value[k].real, q.value[k].real], [p.value[k].imag, q.value[k].imag], "o", ms=5, mfc="white",
+                    mec="black")
+        ax.set_aspect("equal")
+        ax.set_xlim(limits[0], limits[1])
+        ax.set_ylim(limits[2], limits[3])
+        ax.set_xlabel("x, m")
+        ax.set_ylabel("y, m")
+        ax.legend(loc="upper right", fontsize=8)
+        ax.set_title(f"t = {times[k]:.3f} s")
+
+    return _to_html(fig, frame, len(times), interval)

@@ -25,6 +25,7 @@ from .jet import Jet
 __all__ = [
     "GenericSolution",
     "solve_constraints",
+    "newton_history",
     "solve_generic",
     "central_difference",
     "constraint_residual",
@@ -149,6 +150,30 @@ def solve_constraints(constraints: Constraints, guess, phi, omega=1.0, alpha=0.0
             rhs = -np.stack([np.broadcast_to(r.d2 if isinstance(r, Jet) else 0.0, phi.shape) for r in path], -1)
             q_tt = np.linalg.solve(jac, rhs[..., None])[..., 0].T
     return GenericSolution(q, q_t, q_tt, iterations, float(np.max(np.abs(residual))))
+
+
+def newton_history(constraints: Constraints, guess, phi, steps: int = 6) -> list[tuple[np.ndarray, float]]:
+    """Newton's iterations one by one, for teaching: ``[(q, largest |Φ|), …]`` from the guess on.
+
+    Parameters
+    ----------
+    constraints : callable
+        As for :func:`solve_constraints`.
+    guess : array_like, shape (k,)
+        The starting values of the unknowns.
+    phi : float
+        One crank angle (rad).
+    steps : int
+        How many iterations to make (no stopping test: watch the residual fall).
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    q = np.asarray(guess, dtype=float).reshape(-1, 1)
+    history = []
+    for _ in range(steps + 1):
+        residual, jac = _jacobian(constraints, q, phi)
+        history.append((q[:, 0].copy(), float(np.max(np.abs(residual)))))
+        q = q - np.linalg.solve(jac, residual[..., None])[..., 0].T
+    return history
 
 
 def solve_generic(mechanism: Mechanism, phi, omega=1.0, alpha=0.0, order: int = 2, guess=None,

@@ -45,4 +45,52 @@ branches = st.sampled_from([1, -1])
 
 # chapter 4 strategies -----------------------------------------------------------------
 
+four_bar_lengths = st.floats(0.2, 3.0, **finite)
+"""A link length of a four-bar, m (ratios up to 15 keep the tests well conditioned)."""
+
+
+@st.composite
+def four_bar_geometries(draw):
+    """(crank, coupler, rocker, (a, b), branch) of a four-bar that assembles somewhere.
+
+    Grashof and non-Grashof linkages alike; the frame C = (a, b) at a random direction.
+    """
+    from hypothesis import assume
+
+    from mechanisms.four_bar import assembly_intervals
+
+    crank, coupler, rocker, distance = (draw(four_bar_lengths) for _ in range(4))
+    direction = draw(st.floats(-np.pi, np.pi, **finite))
+    frame = (distance * np.cos(direction), distance * np.sin(direction))
+    intervals = assembly_intervals(crank, coupler, rocker, frame)
+    assume(bool(intervals) and max(hi - lo for lo, hi in intervals) > 0.05)
+    return crank, coupler, rocker, frame, draw(st.sampled_from((1, -1)))
+
+
+@st.composite
+def crank_rockers(draw):
+    """(crank, coupler, rocker, (a, b), branch) of a Grashof crank-rocker, s + l < p + q − 0.05 m."""
+    from hypothesis import assume
+
+    crank = draw(st.floats(0.2, 1.0, **finite))
+    coupler, rocker, distance = (draw(st.floats(crank + 0.3, 3.0, **finite)) for _ in range(3))
+    ordered = sorted((crank, coupler, rocker, distance))
+    assume(ordered[0] + ordered[3] < ordered[1] + ordered[2] - 0.05)
+    direction = draw(st.floats(-np.pi, np.pi, **finite))
+    frame = (distance * np.cos(direction), distance * np.sin(direction))
+    return crank, coupler, rocker, frame, draw(st.sampled_from((1, -1)))
+
 # chapter 5 strategies -----------------------------------------------------------------
+
+
+@st.composite
+def slotted_lever_geometries(draw, kind: str = "any"):
+    """(crank r, pivot (a, b)) in m with the pivot's distance d from O at least 5 % away from r
+    (so that the block never comes near the pivot). ``kind``: ``"oscillating"`` (d > r),
+    ``"rotating"`` (d < r) or ``"any"``."""
+    crank = draw(st.floats(0.05, 2.0, **finite))
+    if kind == "any":
+        kind = draw(st.sampled_from(["oscillating", "rotating"]))
+    ratio = draw(st.floats(1.05, 5.0, **finite) if kind == "oscillating" else st.floats(0.0, 0.95, **finite))
+    direction = draw(st.floats(-np.pi, np.pi, **finite))
+    return crank, (ratio * crank * np.cos(direction), ratio * crank * np.sin(direction))

@@ -56,3 +56,11 @@ def test_markdown_table():
     table = mech.markdown_table(["φ, °", "s, m"], [[0, 0.38], [30, "—"]], [".0f", ".3f"])
     assert table._repr_markdown_() == "| φ, ° | s, m |\n|---:|---:|\n| 0 | 0.380 |\n| 30 | — |"
     assert str(table) == table.text
+
+
+def test_animation_needs_no_network():
+    # the site must work offline: no CDN stylesheet, icons as plain characters
+    yoke = ScotchYoke(0.1)
+    html = plot.animate(yoke, yoke.solve(PHI, order=0), frames=3)
+    assert "https://" not in html and "http://" not in html
+    assert 'class="fa' not in html and "▶" in html

@@ -140,3 +140,15 @@ def test_dead_centre_warns_and_names_the_angle():
         sol = StuckYoke(0.1).solve(PHI, 1.0)
     assert sol.singular.sum() == 1
     StuckYoke(0.1).solve(PHI, 1.0, order=0)  # positions only: nothing unbounded, no warning
+
+
+def test_newton_history_converges_quadratically():
+    # expected: the hand solution; the residual at least squares (to a constant) in each step
+    l1, l2, e = 0.08, 0.3, 0.0
+    exact = slider_by_hand(l1, l2, e, np.radians([40.0]), 1.0, 0.0)[0][:, 0]
+    history = verify.newton_history(slider_loop(l1, l2, e), exact + 0.2, np.radians(40.0), steps=5)
+    residuals = [r for _, r in history]
+    assert residuals[0] > 0.01 and residuals[-1] < 1e-15
+    for before, after in zip(residuals[1:3], residuals[2:4]):
+        assert after < 10 * before**2
+    np.testing.assert_allclose(history[-1][0], exact, atol=1e-15)

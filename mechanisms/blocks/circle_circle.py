@@ -133,7 +133,12 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     slack_near = distance - difference    # ≥ 0: neither circle inside the other
     tolerance = ASSEMBLY_TOLERANCE * total
     far = slack_far < -tolerance
-    near = (slack_near < -tolerance) | (distance == 0.0)
+    near = slack_near < -tolerance
+    coincident = distance <= tolerance * 1e-3
+    if coincident.any():
+        where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), d.shape)
+        raise AssemblyError("the two known joints coincide, so the hinge is indeterminate (it can be "
+                            "anywhere on a circle)", None if where is None else where[coincident])
     if far.any() or near.any():
         where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), d.shape)
         reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "

@@ -1,0 +1,114 @@
+"""Tests of the four-bar analysis (mechanisms/analysis/four_bar.py)."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+
+from mechanisms import AssemblyError, FourBar
+from mechanisms.analysis.four_bar import (best_line, coupler_curve, crank_range, grashof_class, limit_positions,
+                                          straight_part, transmission_angle, transmission_extremes)
+from strategies import crank_rockers, four_bar_geometries
+
+
+@pytest.mark.parametrize("lengths, name, rotates", [
+    # (crank, coupler, rocker, frame): classes by hand from s + l against p + q
+    ((1.0, 3.5, 3.0, 4.0), "crank-rocker", True),
+    ((3.0, 3.5, 4.0, 1.0), "double-crank", True),
+    ((3.0, 1.0, 3.5, 3.2), "double-rocker", False),
+    ((3.0, 3.5, 1.0, 3.2), "rocker-crank", False),
+    ((1.0, 4.0, 1.0, 4.0), "change point", True),       # parallelogram
+    ((2.0, 2.0, 2.0, 3.0), "triple rocker", False),
+])
+def test_grashof_classes(lengths, name, rotates):
+    kind = grashof_class(*lengths)
+    assert kind.name == name and kind.crank_rotates == rotates
+
+
+@settings(max_examples=80, deadline=None)
+@given(four_bar_geometries())
+def test_assembly_range_against_a_brute_force_scan(geometry):
+    crank, coupler, rocker, frame, branch = geometry
+    m = FourBar(crank, coupler, rocker, frame, branch)
+    phi = np.linspace(-np.pi, np.pi, 3601)
+    # expected: the triangle inequality for A, B, C at every angle of a fine scan
+    ac = np.abs(complex(*frame) - crank * np.exp(1j * phi))
+    slack = np.minimum(coupler + rocker - ac, ac - abs(coupler - rocker))
+    scanned = slack >= 0
+    inside = np.zeros(phi.shape, bool)
+    for lo, hi in crank_range(m):
+        inside |= ((phi - lo) % (2 * np.pi) <= (hi - lo) + 1e-12) if hi - lo < 2 * np.pi - 1e-12 else True
+    clear = np.abs(slack) > 1e-6 * (crank + coupler + rocker)   # away from the limits
+    assert np.array_equal(scanned[clear], inside[clear])
+    # and solve() assembles exactly there (positions only)
+    inner = phi[scanned & clear]
+    if inner.size:
+        m.solve(inner, order=0)
+    outer = phi[~scanned & clear]
+    if outer.size:
+        with pytest.raises(AssemblyError):
+            m.solve(outer, order=0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(crank_rockers())
+def test_limit_positions_and_transmission_extremes_against_a_scan(geometry):
+    crank, coupler, rocker, frame, branch = geometry
+    m = FourBar(crank, coupler, rocker, frame, branch)
+    phi = np.linspace(0.0, 2 * np.pi, 20001)
+    sol = m.solve(phi, order=0)
+    xi = np.unwrap(sol.angle("rocker").value)
+    limits = limit_positions(m)
+    # expected: the extremes of the rocker angle on a fine scan (step 0.018°)
+    found = sorted([phi[np.argmax(xi)], phi[np.argmin(xi)]])
+    assert np.allclose(sorted(limits.phi), found, atol=2e-3)
+    assert limits.swing == pytest.approx(xi.max() - xi.min(), abs=1e-6)
+    stroke = abs(phi[np.argmax(xi)] - phi[np.argmin(xi)])
+    assert limits.time_ratio == pytest.approx(max(stroke, 2 * np.pi - stroke) / min(stroke, 2 * np.pi - stroke),
+                                              rel=2e-3)
+    mu = transmission_angle(sol)
+    assert np.allclose(transmission_extremes(m), (mu.min(), mu.max()), atol=1e-6)
+
+
+def test_a_worked_time_ratio_by_hand():
+    # L1 = 1, L2 = 3.5, L3 = 3, C = (4, 0): the extended and folded positions, by the cosine law
+    m = FourBar(1.0, 3.5, 3.0, (4.0, 0.0))
+    ext = math.acos((4.0**2 + 4.5**2 - 3.0**2) / (2 * 4.0 * 4.5))
+    fold = math.acos((4.0**2 + 2.5**2 - 3.0**2) / (2 * 4.0 * 2.5))
+    limits = limit_positions(m)
+    assert limits.phi[0] == pytest.approx(ext)
+    assert limits.phi[1] == pytest.approx(math.pi + fold)
+    theta = fold - ext + 0.0
+    assert limits.time_ratio == pytest.approx((math.pi + theta) / (math.pi - theta))
+
+
+def test_limit_positions_need_a_crank_rocker():
+    with pytest.raises(AssemblyError, match="crank-rocker"):
+        limit_positions(FourBar(2.0, 2.0, 2.0, (3.0, 0.0)))
+
+
+def test_coupler_curve_of_a_rocking_crank_closes():
+    m = FourBar(2.0, 2.0, 2.0, (3.0, 0.0))           # triple rocker: the curve runs both branches
+    curve = coupler_curve(m, 1.0, 0.5, positions=201)
+    assert abs(curve.value[0] - curve.value[-1]) < 1e-12
+    # expected: every point at distance |1 + 0.5i| from A along the coupler, checked via B
+    full = coupler_curve(FourBar(1.0, 3.5, 3.0, (4.0, 0.5)), 3.5, 0.0, positions=37)
+    sol = FourBar(1.0, 3.5, 3.0, (4.0, 0.5)).solve(np.linspace(*crank_range(FourBar(1.0, 3.5, 3.0, (4.0, 0.5)))[0], 37),
+                                                   order=0)
+    assert np.allclose(full.value, sol.point("B").value)
+
+
+def test_best_line_and_straight_part():
+    t = np.linspace(-1.0, 1.0, 201)
+    # expected by hand: a parabola y = 0.01 t² about the line y = mean; a straight part of
+    # tolerance 0.004 ends where 0.01 t² − mean exceeds it
+    points = t + 0.01j * t**2
+    _, direction, length, deviation = best_line(points)
+    assert abs(direction.imag) < 1e-12 and length == pytest.approx(2.0)
+    assert deviation == pytest.approx(0.01 - 0.01 * np.mean(t**2))   # the end points, from the mean line
+    part = straight_part(t, points, 100, 0.004)
+    half = part.phi[1]
+    assert 0.01 * half**2 * 2 / 3 <= 0.004 + 1e-12
+    with pytest.raises(ValueError):
+        straight_part(t, t + 1j * np.abs(t), 100, 1e-6)   # a corner: no straight part

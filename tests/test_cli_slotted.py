@@ -1,0 +1,69 @@
+"""Tests of the command line for the slotted lever: ``python -m mechanisms table slotted-lever``.
+
+Expected values come from hand calculations with the textbook relations of source 004 (5.62–5.69).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+
+import pytest
+
+from mechanisms.cli import main
+
+ARGS = ["table", "slotted-lever", "--crank", "0.1", "--pivot", "0,0.3", "--omega", "10"]
+
+
+def run(capsys, args):
+    status = main(args)
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+def test_json(capsys):
+    status, out, _ = run(capsys, ARGS + ["--positions", "4", "--format", "json"])
+    assert status == 0
+    data = json.loads(out)
+    assert data["mechanism"] == "slotted-lever" and data["parameters"]["pivot"] == [0.0, 0.3]
+    row = data["rows"][0]
+    assert set(row["links"]) == {"crank", "lever"} and {"O", "A", "C"} <= set(row["points"])
+    # by hand at φ = 0: l3 = √(0.1² + 0.3²) (5.62), φ3 = atan2(−0.3, 0.1) (5.63),
+    # v_rel = −ω1 l1 sin(φ1 − φ3) (5.68), ω3 = ω1 l1 cos(φ1 − φ3)/l3 (5.69), Coriolis 2 ω3 v_rel
+    l3, phi3 = math.hypot(0.1, 0.3), math.atan2(-0.3, 0.1)
+    v_rel, w3 = -10 * 0.1 * math.sin(-phi3), 10 * 0.1 * math.cos(-phi3) / l3
+    block = row["sliders"]["A"]
+    assert block["s"] == pytest.approx(l3, abs=1e-15)
+    assert block["v"] == pytest.approx(v_rel, abs=1e-14)
+    assert block["coriolis"] == pytest.approx(2 * w3 * v_rel, abs=1e-13)
+    assert row["links"]["lever"]["angle_deg"] == pytest.approx(math.degrees(phi3), abs=1e-12)
+    assert row["links"]["lever"]["omega"] == pytest.approx(w3, abs=1e-14)
+    assert [r["phi_deg"] for r in data["rows"]] == [0.0, 90.0, 180.0, 270.0]
+
+
+def test_csv_and_text(capsys):
+    status, out, _ = run(capsys, ARGS + ["--angles", "0:60:30", "--format", "csv"])
+    assert status == 0
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert len(rows) == 2 and {"lever.omega", "A.s", "A.v", "A.a", "A.coriolis"} <= set(rows[0])
+    status, out, _ = run(capsys, ARGS + ["--positions", "12"])
+    assert status == 0 and "slider A" in out and "coriolis, m/s²" in out and "link lever" in out
+
+
+def test_point_on_the_lever(capsys):
+    # a point on the lever 0.5 m from C: at φ = 0 it lies along (0.1, −0.3)/l3 (by hand)
+    status, out, _ = run(capsys, ARGS + ["--angles", "0:1:1", "--point", "P=lever:0.5", "--format", "json"])
+    p = json.loads(out)["rows"][0]["points"]["P"]
+    l3 = math.hypot(0.1, 0.3)
+    assert status == 0 and p["x"] == pytest.approx(0.5 * 0.1 / l3) and p["y"] == pytest.approx(0.3 - 0.5 * 0.3 / l3)
+
+
+def test_bad_inputs(capsys):
+    status, _, err = run(capsys, ["table", "slotted-lever", "--crank", "-0.1", "--pivot", "0,0.3", "--omega", "1"])
+    assert status == 2 and "crank" in err
+    status, _, err = run(capsys, ARGS + ["--point", "P=rod:0.1"])
+    assert status == 2 and "lever" in err
+    with pytest.raises(SystemExit):
+        main(["table", "slotted-lever", "--crank", "0.1", "--pivot", "0.3", "--omega", "1"])
