@@ -90,26 +90,24 @@ def describe_angles(angles, limit: int = 6) -> str:
     return shown
 
 
-def require_finite(name: str, value) -> float:
-    """Return ``value`` as float, or raise :class:`InvalidParameterError` if it is not finite."""
+def _number(name: str, value, requirement: str, positive: bool) -> float:
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise InvalidParameterError(name, value, "a finite number") from None
-    if not math.isfinite(number):
-        raise InvalidParameterError(name, value, "a finite number")
+        raise InvalidParameterError(name, value, requirement) from None
+    if not math.isfinite(number) or (positive and number <= 0.0):
+        raise InvalidParameterError(name, value, requirement)
     return number
+
+
+def require_finite(name: str, value) -> float:
+    """Return ``value`` as float, or raise :class:`InvalidParameterError` if it is not finite."""
+    return _number(name, value, "a finite number", positive=False)
 
 
 def require_length(name: str, value) -> float:
     """Return ``value`` as float, or raise if it is not a finite length > 0 (m)."""
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(name, value, "a finite length > 0 m") from None
-    if not math.isfinite(number) or number <= 0.0:
-        raise InvalidParameterError(name, value, "a finite length > 0 m")
-    return number
+    return _number(name, value, "a finite length > 0 m", positive=True)
 
 
 def require_branch(value, name: str = "branch") -> int:

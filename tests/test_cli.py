@@ -1,0 +1,102 @@
+"""Tests of the command line's generic parts (mechanisms.cli), on a Scotch yoke registered here.
+
+Expected values: the yoke's slider is at s = r cos φ with v = −r ω sin φ (by hand).
+"""
+
+import csv
+import io
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from mechanisms import cli
+from mechanisms.base import Parameter
+from mechanisms.errors import InvalidParameterError
+from mechanisms_for_tests import ScotchYoke
+
+
+class RegisteredYoke(ScotchYoke):
+    """Scotch yoke (registered for the command line in this test only)."""
+
+    cli_name = "test-yoke"
+    links = {"crank": "O"}
+    cli_parameters = (Parameter("crank", "length", "crank length r, m"),)
+
+
+def run(*args):
+    out, err = io.StringIO(), io.StringIO()
+    sys_out, sys_err = sys.stdout, sys.stderr
+    sys.stdout, sys.stderr = out, err
+    try:
+        code = cli.main(list(args))
+    finally:
+        sys.stdout, sys.stderr = sys_out, sys_err
+    return code, out.getvalue(), err.getvalue()
+
+
+def test_help_runs_as_a_module():
+    result = subprocess.run([sys.executable, "-m", "mechanisms", "--help"], capture_output=True, text=True, check=True)
+    assert "table" in result.stdout and "kinematic table" in result.stdout
+
+
+def test_parse_angles_in_degrees_stop_excluded():
+    np.testing.assert_allclose(cli.parse_angles("0:360:90"), np.radians([0, 90, 180, 270]))
+    for bad in ("0:360", "a:b:c", "0:360:0", "0:360:-30", "0:nan:10"):
+        with pytest.raises(InvalidParameterError, match="--angles"):
+            cli.parse_angles(bad)
+
+
+def test_parse_point():
+    assert cli.parse_point("S2=coupler:0.09") == ("S2", "coupler", 0.09, 0.0)
+    assert cli.parse_point("K=coupler:0.1,-0.02") == ("K", "coupler", 0.1, -0.02)
+    for bad in ("S2", "S2=coupler", "=coupler:1", "S2=coupler:x", "S2=coupler:1,2,3"):
+        with pytest.raises(InvalidParameterError, match="--point"):
+            cli.parse_point(bad)
+
+
+def test_json_round_trip():
+    code, out, _ = run("table", "test-yoke", "--crank", "0.1", "--omega", "10", "--angles", "0:360:90",
+                       "--point", "M=crank:0.05", "--format", "json")
+    assert code == 0
+    data = json.loads(out)
+    assert data["mechanism"] == "test-yoke"
+    assert data["parameters"] == {"crank": 0.1, "omega": 10.0, "alpha": 0.0}
+    assert [r["phi_deg"] for r in data["rows"]] == [0.0, 90.0, 180.0, 270.0]
+    second = data["rows"][1]
+    assert set(second) == {"phi_deg", "links", "points", "sliders"}
+    # by hand at φ = 90°: s = 0, v = −r ω = −1 m/s; the crank's mid-point moves at 0.5 m/s in −x
+    assert second["sliders"]["B"]["s"] == pytest.approx(0.0, abs=1e-15)
+    assert second["sliders"]["B"]["v"] == pytest.approx(-1.0)
+    assert second["points"]["M"]["vx"] == pytest.approx(-0.5)
+    assert second["links"]["crank"] == {"angle_deg": 90.0, "omega": 10.0, "alpha": 0.0}
+
+
+def test_csv_has_one_row_per_position():
+    code, out, _ = run("table", "test-yoke", "--crank", "0.1", "--omega", "10", "--positions", "6", "--format", "csv")
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert code == 0 and len(rows) == 6
+    assert float(rows[3]["B.s"]) == pytest.approx(-0.1)  # φ = 180°: s = −r
+    assert "crank.angle_deg" in rows[0] and "A.ay" in rows[0]
+
+
+def test_text_table_is_readable():
+    code, out, _ = run("table", "test-yoke", "--crank", "0.1", "--omega", "10", "--positions", "12")
+    assert code == 0
+    assert out.startswith("test-yoke: crank = 0.1 m; omega = 10 1/s")
+    assert "slider B" in out and "s, m" in out and "v, m/s" in out
+    assert len([ln for ln in out.splitlines() if ln.strip().startswith("330.0")]) == 5  # 1 link, 3 points, 1 slider
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--crank", "-1", "--omega", "1"), "crank must be a finite length > 0 m"),
+    (("--crank", "0.1", "--omega", "1", "--positions", "0"), "--positions must be a whole number"),
+    (("--crank", "0.1", "--omega", "1", "--point", "K=rocker:0.1"), "on one of the links crank"),
+    (("--crank", "0.1", "--omega", "nan"), "omega must be finite"),
+])
+def test_bad_input_is_a_clear_error_not_a_crash(args, message):
+    code, out, err = run("table", "test-yoke", *args)
+    assert code == 2 and out == ""
+    assert message in err
