@@ -6,8 +6,9 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 SITE   := _build/html
+STUDENT := _build/student
 
-.PHONY: book test notebooks clean
+.PHONY: book book-student test notebooks clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -24,9 +25,18 @@ _mathjax/mathjax/es5/tex-chtml.js: $(STAMP)
 	mkdir -p _mathjax/mathjax && mv _mathjax/mathjax-es5 _mathjax/mathjax/es5
 
 book: $(STAMP) _mathjax/mathjax/es5/tex-chtml.js
+	$(BIN)/python tools/status_page.py
 	$(BIN)/jupyter-book build . --all --builder html --warningiserror --keep-going
 
-test: book
+# The student edition: the same book without the exercises' solutions (sphinx-exercise's
+# hide_solutions), its configuration generated from _config.yml; the site is in $(STUDENT)/_build/html.
+book-student: $(STAMP) _mathjax/mathjax/es5/tex-chtml.js
+	$(BIN)/python tools/status_page.py
+	$(BIN)/python tools/student_config.py $(STUDENT)/_config.yml
+	$(BIN)/jupyter-book build . --all --builder html --warningiserror --keep-going \
+		--config $(STUDENT)/_config.yml --path-output $(STUDENT)
+
+test: book book-student
 	$(BIN)/python -m pytest
 
 # Re-execute notebooks in place and store their outputs (NB=path/to/one.ipynb for one).

@@ -1,10 +1,18 @@
-"""Sphinx extension of this book: keep the static site self-contained (it must work offline).
+"""Sphinx extension of this book: a self-contained static site and readable docstrings.
 
+**Offline.** 
 Jupyter Book 1 always loads sphinx-thebe, which adds scripts that fetch thebe from a CDN for live
 code cells. The book has none (its notebooks are executed and tested ahead of time), and those
 scripts are added twice, which is a JavaScript error in every page. This extension removes
 sphinx-thebe's script hook before the build reads any document.
+
+**Docstrings.** The package's docstrings write magnitudes as in the book, ``|v|``, ``|J − p|``;
+reStructuredText would read ``|…|`` as a substitution, so the API reference escapes the bars.
 """
+
+import re
+
+_MAGNITUDE = re.compile(r"(?<![\\|])\|([^|\n`]+)\|(?!\|)")
 
 
 def _drop_thebe(app, config):
@@ -14,6 +22,11 @@ def _drop_thebe(app, config):
             app.disconnect(listener.id)
 
 
+def _escape_magnitudes(app, what, name, obj, options, lines):
+    lines[:] = [_MAGNITUDE.sub(r"\\|\1\\|", line) for line in lines]
+
+
 def setup(app):
     app.connect("config-inited", _drop_thebe, priority=900)
+    app.connect("autodoc-process-docstring", _escape_magnitudes)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

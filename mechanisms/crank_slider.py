@@ -73,7 +73,8 @@ class CrankSlider(Mechanism):
     offset : float
         Offset e (m): the slider's guide is the line y = e, parallel to x (0 for the axial mechanism).
     branch : int
-        +1: the slider works on the +x side of the crank pin (B to the right of A); −1: on the −x side.
+        +1: the slider works on the +x side of the crank pin (B to the right of A), and so, for a crank
+        that turns fully, on the +x side of the crank pivot; −1: on the −x side.
 
     Notes
     -----
@@ -132,8 +133,8 @@ class CrankSlider(Mechanism):
 
     def scheme(self):
         # the guide is drawn centred near the middle of the stroke
-        return (Guide(complex(self.branch * self.rod, self.offset), 0.0), Ground("O"), Bar("crank", ("O", "A"), "crank"),
-                Bar("coupler", ("A", "B"), "coupler"), Block("B", 0.0))
+        return (Guide(complex(self.branch * self.rod, self.offset), 0.0), Ground("O"),
+                Bar("crank", ("O", "A"), "crank"), Bar("coupler", ("A", "B"), "coupler"), Block("B", 0.0))
 
     def preserved_distances(self) -> dict[tuple[str, str], float]:
         return {("O", "A"): self.crank, ("A", "B"): self.rod}

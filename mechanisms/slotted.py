@@ -458,7 +458,7 @@ class SliderOnCoupler(Mechanism):
 
     def scheme(self):
         x0, y0 = self.guide_point
-        return [Ground("O"), Guide(1j * self.offset, 0.0), Guide(complex(x0, y0), self.guide_angle),
+        return [Ground("O"), Guide(complex(self.rod, self.offset), 0.0), Guide(complex(x0, y0), self.guide_angle),
                 Bar("crank", ("O", "A"), "crank"), Bar("coupler", ("A", "B", "L"), "coupler"), Block("B", 0.0),
                 Block("L", self.guide_angle)]
 

@@ -26,7 +26,7 @@ def test_grashof_classes(lengths, name, rotates):
     assert kind.name == name and kind.crank_rotates == rotates
 
 
-@settings(max_examples=80, deadline=None)
+@settings(max_examples=200, deadline=None)
 @given(four_bar_geometries())
 def test_assembly_range_against_a_brute_force_scan(geometry):
     crank, coupler, rocker, frame, branch = geometry
@@ -51,7 +51,7 @@ def test_assembly_range_against_a_brute_force_scan(geometry):
             m.solve(outer, order=0)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(crank_rockers())
 def test_limit_positions_and_transmission_extremes_against_a_scan(geometry):
     crank, coupler, rocker, frame, branch = geometry

@@ -20,7 +20,7 @@ def cross(u, v):
     return (np.conj(u) * v).imag
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=300, deadline=None)
 @given(points, points, lengths, lengths, st.sampled_from((1, -1)))
 def test_lengths_and_side(p, q, length_p, length_q, branch):
     distance = abs(q - p)
@@ -37,7 +37,7 @@ def test_lengths_and_side(p, q, length_p, length_q, branch):
     assert np.isclose(np.exp(1j * joint.angle_q.value[0]), (j - q) / length_q)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=200, deadline=None)
 @given(points, points, lengths, lengths, st.sampled_from((1, -1)),
        st.tuples(*[st.floats(-5, 5)] * 8))
 def test_derivatives_satisfy_differentiated_constraints(p, q, length_p, length_q, branch, motion):

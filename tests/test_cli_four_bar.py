@@ -69,3 +69,10 @@ def test_bad_branch_and_frame(capsys):
     status, _, err = run(["table", "lambda", "--crank", "-2", "--half-coupler", "6.5", "--ground", "5",
                           "--omega", "1"], capsys)
     assert status == 2 and "crank" in err
+
+
+def test_negative_frame_coordinates_with_an_equals_sign(capsys):
+    # argparse reads "-0.4,0.05" as an option; "--frame=-0.4,0.05" passes it as a value
+    status, out, _ = run(["table", "four-bar", "--crank", "0.1", "--coupler", "0.35", "--rocker", "0.3",
+                          "--frame=-0.4,0.05", "--omega", "1", "--positions", "3", "--format", "json"], capsys)
+    assert status == 0 and json.loads(out)["parameters"]["frame"] == [-0.4, 0.05]

@@ -295,3 +295,14 @@ def test_erratum_lecture_psi_tt_through_crank_pin(branch):
     # the printed form loses (1 − L1/1 m) of the second term: 92 % here, hundreds of rad/s²
     assert np.max(np.abs(printed - psi_tt)) > 0.5 * np.max(np.abs(second)) > 100.0
     np.testing.assert_allclose(y_t / (l2 * np.cos(psi)), psi_t, rtol=1e-12, atol=1e-10)  # ψ_t: printed right
+
+
+def test_scheme_draws():
+    # the drawing primitives name existing joints and links: drawing must not raise
+    import matplotlib.pyplot as plt
+
+    m = mech.CrankSlider(0.08, 0.3, -0.02, -1)
+    sol = m.solve(np.radians([40.0]), 1.0, order=0)
+    ax = mech.plot.draw(m, sol)
+    assert len(ax.lines) >= 2
+    plt.close(ax.figure)

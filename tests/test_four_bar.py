@@ -34,7 +34,7 @@ def well_conditioned(mechanism, phi):
     return np.all(np.abs(np.sin(sol.angle("coupler").value - sol.angle("rocker").value)) > 0.05)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=200, deadline=None)
 @given(four_bar_geometries())
 def test_closed_form_against_the_generic_solver(geometry):
     crank, coupler, rocker, frame, branch = geometry
@@ -58,7 +58,7 @@ def test_closed_form_against_the_generic_solver(geometry):
     assert np.all(side == branch)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=200, deadline=None)
 @given(four_bar_geometries())
 def test_half_angle_and_cramer_formulas_of_the_lecture(geometry):
     crank, coupler, rocker, frame, branch = geometry

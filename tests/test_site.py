@@ -1,10 +1,13 @@
 """The built site in a real headless browser (Debian's Chromium driven by Playwright).
 
-Every page of `_build/html` (built by `make book`, which `make test` runs first) is opened over
-a local http.server with every non-local request blocked, as a student without a network would
-see it. Each page must have its math typeset by the site's own MathJax, every image loaded,
-the controls of every animation, no failed local request and no console error.
-Screenshots go to `_build/screenshots/` for a person to look at.
+Both editions of the site are tested: the full one in `_build/html` (built by `make book`) and
+the student edition without the exercises' solutions in `_build/student/_build/html` (built by
+`make book-student`); `make test` builds both first. Every page is opened over a local
+http.server with every non-local request blocked, as a student without a network would see it.
+Each page must have its math typeset by the site's own MathJax, every image loaded, the
+controls of every animation, no failed local request and no console error. The exercise pages
+of the full edition must have their solutions, those of the student edition none.
+Screenshots go to `_build/screenshots/` (`_build/screenshots/student/`) for a person to look at.
 
 Run alone with `pytest -m browser`.
 """
@@ -21,6 +24,11 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SITE = ROOT / "_build" / "html"
 SHOTS = ROOT / "_build" / "screenshots"
+# edition -> (site folder, the command that builds it, folder of its screenshots)
+EDITIONS = {
+    "full": (SITE, "make book", SHOTS),
+    "student": (ROOT / "_build" / "student" / "_build" / "html", "make book-student", SHOTS / "student"),
+}
 CHROMIUM = pathlib.Path("/usr/bin/chromium")
 SKIPPED_DIRS = {"_static", "_sources", "_images", "mathjax", "_sphinx_design_static"}
 GENERATED = {"genindex.html", "search.html", "index.html"}  # Sphinx's own pages and the redirect
@@ -30,16 +38,23 @@ CONSOLE_ALLOW: tuple[str, ...] = ()
 pytestmark = pytest.mark.browser
 
 
-def site_pages() -> list[str]:
-    if not SITE.is_dir():
+def site_pages(site: pathlib.Path = SITE) -> list[str]:
+    if not site.is_dir():
         return []
     pages = []
-    for path in sorted(SITE.rglob("*.html")):
-        rel = path.relative_to(SITE)
+    for path in sorted(site.rglob("*.html")):
+        rel = path.relative_to(site)
         if rel.parts[0] in SKIPPED_DIRS or str(rel) in GENERATED:
             continue
         pages.append(rel.as_posix())
     return pages
+
+
+def edition_pages() -> list:
+    """(edition, page) for every page of both editions; an edition not built has no pages here, and
+    ``test_the_site_has_the_book`` fails for it."""
+    return [pytest.param(edition, page, id=f"{edition}:{page}")
+            for edition, (site, _, _) in EDITIONS.items() for page in site_pages(site)]
 
 
 class QuietHandler(http.server.SimpleHTTPRequestHandler):
@@ -47,15 +62,34 @@ class QuietHandler(http.server.SimpleHTTPRequestHandler):
         pass
 
 
+def require_built(edition: str) -> pathlib.Path:
+    site, command, _ = EDITIONS[edition]
+    assert site.is_dir(), f"the {edition} edition of the site is not built ({site} is missing): run `{command}` first"
+    return site
+
+
 @pytest.fixture(scope="module")
-def server():
-    assert SITE.is_dir(), "the site is not built: run `make book` first"
-    handler = functools.partial(QuietHandler, directory=str(SITE))
-    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    thread = threading.Thread(target=httpd.serve_forever, daemon=True)
-    thread.start()
-    yield f"http://127.0.0.1:{httpd.server_address[1]}"
-    httpd.shutdown()
+def servers():
+    """A local server per edition, started when a test first asks for it: ``servers(edition)`` → URL."""
+    running: dict[str, tuple[http.server.ThreadingHTTPServer, str]] = {}
+
+    def serve(edition: str) -> str:
+        if edition not in running:
+            handler = functools.partial(QuietHandler, directory=str(require_built(edition)))
+            httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+            threading.Thread(target=httpd.serve_forever, daemon=True).start()
+            running[edition] = (httpd, f"http://127.0.0.1:{httpd.server_address[1]}")
+        return running[edition][1]
+
+    yield serve
+    for httpd, _ in running.values():
+        httpd.shutdown()
+
+
+@pytest.fixture(scope="module")
+def server(servers):
+    """The full edition's server."""
+    return servers("full")
 
 
 @pytest.fixture(scope="module")
@@ -92,16 +126,49 @@ def open_page(browser, server: str, page_path: str):
     return context, page, problems
 
 
-def test_the_site_has_the_book(server):
-    pages = site_pages()
+@pytest.mark.parametrize("edition", list(EDITIONS))
+def test_the_site_has_the_book(edition):
+    pages = site_pages(require_built(edition))
     for expected in ("book/preface.html", "book/01-links.html", "book/02-constraints.html",
                      "exercises/01-links.html", "book/appendix/errata.html"):
-        assert expected in pages
+        assert expected in pages, f"{expected} is missing from the {edition} edition"
 
 
-@pytest.mark.parametrize("page_path", site_pages())
-def test_page_renders(browser, server, page_path):
-    context, page, problems = open_page(browser, server, page_path)
+def exercise_pages(edition: str) -> list[str]:
+    return [p for p in site_pages(require_built(edition)) if p.startswith("exercises/")]
+
+
+def test_the_full_edition_has_the_solutions():
+    site = require_built("full")
+    for page in exercise_pages("full"):
+        html = (site / page).read_text(encoding="utf8")
+        # sphinx-exercise writes each solution as <div class="solution dropdown admonition" ...>
+        assert html.count('class="exercise admonition') >= 4, f"{page}: fewer than 4 exercises"
+        assert html.count('class="solution dropdown admonition') >= html.count('class="exercise admonition'), \
+            f"{page}: an exercise without its solution (in a dropdown)"
+
+
+def test_the_student_edition_has_no_solutions():
+    site = require_built("student")
+    assert exercise_pages("student") == exercise_pages("full"), "the two editions have different exercise pages"
+    for page in exercise_pages("student"):
+        html = (site / page).read_text(encoding="utf8")
+        assert html.count('class="exercise admonition') >= 4, f"{page}: the exercises are missing"
+        assert 'class="solution' not in html and "solution-content" not in html, f"{page}: a solution is shown"
+        # the code of a worked solution is gone too: only code cells outside the solutions remain
+        full = (require_built("full") / page).read_text(encoding="utf8")
+        assert html.count('class="cell docutils container') < full.count('class="cell docutils container'), \
+            f"{page}: the solutions' code cells are still on the page"
+    # the sources (which hold the solutions) can neither be downloaded nor found in the site
+    assert not (site / "_sources").exists(), "the student edition holds the sources (_sources) with the solutions"
+    for page in site_pages(site):
+        assert ".ipynb" not in (site / page).read_text(encoding="utf8").replace(".ipynb_checkpoints", ""), \
+            f"{page} links a notebook (the download button)"
+
+
+@pytest.mark.parametrize(("edition", "page_path"), edition_pages())
+def test_page_renders(browser, servers, edition, page_path):
+    context, page, problems = open_page(browser, servers(edition), page_path)
     try:
         page.wait_for_load_state("networkidle")
         has_math = page.evaluate("document.querySelectorAll('.math, span.math, div.math').length") > 0
@@ -117,8 +184,9 @@ def test_page_renders(browser, server, page_path):
         for animation in page.locator("div.animation").all():
             assert animation.locator(".anim-buttons button").count() >= 5, "animation without its buttons"
             assert animation.locator("input.anim-slider").count() == 1, "animation without its slider"
-        SHOTS.mkdir(parents=True, exist_ok=True)
-        page.screenshot(path=str(SHOTS / (page_path.replace("/", "_") + ".png")), full_page=False)
+        shots = EDITIONS[edition][2]
+        shots.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(shots / (page_path.replace("/", "_") + ".png")), full_page=False)
         assert problems == [], "\n".join(problems)
     finally:
         context.close()

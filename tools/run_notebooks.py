@@ -6,7 +6,9 @@ A notebook may be written as a MyST/percent text file and paired with jupytext; 
 executes the .ipynb with the ``python3`` kernel, without timing metadata, so outputs are stable.
 """
 
+import json
 import pathlib
+import platform
 import sys
 import time
 
@@ -14,6 +16,7 @@ import nbformat
 from nbclient import NotebookClient
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+TIMES = ROOT / "tools" / "notebook_times.json"
 
 
 def run(path: pathlib.Path) -> float:
@@ -32,7 +35,12 @@ def main(args: list[str]) -> None:
     paths = [pathlib.Path(a) for a in args] or sorted(
         p for d in ("book", "exercises") for p in (ROOT / d).rglob("*.ipynb") if ".ipynb_checkpoints" not in p.parts)
     for path in paths:
-        print(f"{path}: {run(path):.1f} s", flush=True)
+        seconds = run(path)
+        print(f"{path}: {seconds:.1f} s", flush=True)
+        times = json.loads(TIMES.read_text()) if TIMES.exists() else {}
+        times[path.resolve().relative_to(ROOT).as_posix()] = {
+            "seconds": round(seconds, 2), "machine": f"{platform.machine()}, {platform.python_version()}"}
+        TIMES.write_text(json.dumps(times, indent=1, sort_keys=True) + "\n")
 
 
 if __name__ == "__main__":

@@ -199,8 +199,11 @@ def coupler_curve(mechanism: FourBar, along: float, left: float = 0.0, positions
     Returns
     -------
     PointMotion
-        Positions only (order 0); the crank angles are its ``phi`` attribute's source: use
-        :func:`crank_range` for them.
+        Positions only (order 0), in the order of the motion: over a full turn for a rotating
+        crank; for a rocking crank from one limit of its interval to the other on the
+        mechanism's branch and back on the other branch, so that the curve closes (at a limit
+        of assembly the motion passes from one branch to the other). A crank with two
+        separate intervals gives two closed curves, one after the other.
     """
     intervals = crank_range(mechanism)
     if not intervals:
@@ -208,7 +211,7 @@ def coupler_curve(mechanism: FourBar, along: float, left: float = 0.0, positions
     pieces = []
     for lo, hi in intervals:
         phi = np.linspace(lo, hi, positions)
-        if len(intervals) > 0 and hi - lo < 2.0 * math.pi - 1e-12:
+        if hi - lo < 2.0 * math.pi - 1e-12:
             # a rocking crank: go to the limit and come back on the other branch (the motion
             # passes the limit with the rocker and coupler in line)
             shrink = 1e-12 * (hi - lo)

@@ -227,7 +227,7 @@ def check_design(design: CouplerOutputDesign, positions: int = 3600) -> DesignCh
     stroke = limits[1] - limits[0]
     ratio = max(stroke, 2.0 * math.pi - stroke) / min(stroke, 2.0 * math.pi - stroke)
     singular = bool(np.any(np.minimum(mu, math.pi - mu) < 1e-6))
-    return DesignCheck(kind.name, kind.crank_rotates, singular, limits, ratio, float(at_limits[0]),
+    return DesignCheck(kind.name, kind.crank_rotates, singular, limits, float(ratio), float(at_limits[0]),
                        float(at_limits[1]), float(np.min(np.minimum(mu, math.pi - mu))))
 
 
