@@ -12,6 +12,7 @@ import csv
 import io
 import json
 import math
+import os
 import sys
 import warnings
 from typing import Sequence
@@ -106,11 +107,19 @@ _UNITS = {"angle_deg": "°", "omega": "1/s", "alpha": "1/s²", "x": "m", "y": "m
           "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s", "a": "m/s²", "coriolis": "m/s²"}
 
 
+def _readable(value: float | None, scale: float) -> str:
+    """Six significant digits; round-off below 1e-12 of the column's scale printed as 0."""
+    if value is None:
+        return "—"
+    return "0" if abs(value) <= 1e-12 * scale else f"{value:.6g}"
+
+
 def _text_block(title: str, rows: list[dict], group: str, name: str) -> str:
     keys = list(rows[0][group][name])
-    headers = ["φ, °"] + [f"{k}, {_UNITS.get(k, '')}".rstrip(", ") for k in keys]
-    body = [[f"{r['phi_deg']:.1f}"] + ["—" if r[group][name][k] is None else f"{r[group][name][k]:.6g}"
-                                       for k in keys] for r in rows]
+    headers = ["φ, °"] + [f"{k.removesuffix('_deg')}, {_UNITS.get(k, '')}".rstrip(", ") for k in keys]
+    scales = {k: max((abs(r[group][name][k]) for r in rows if r[group][name][k] is not None), default=0.0)
+              for k in keys}
+    body = [[f"{r['phi_deg']:.1f}"] + [_readable(r[group][name][k], scales[k]) for k in keys] for r in rows]
     widths = [max(len(h), *(len(b[j]) for b in body)) for j, h in enumerate(headers)]
     lines = [title, "  ".join(h.rjust(w) for h, w in zip(headers, widths))]
     lines += ["  ".join(c.rjust(w) for c, w in zip(b, widths)) for b in body]
@@ -190,4 +199,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     except MechanismError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader (e.g. `head`) stopped early: not an error
+        sys.stdout = open(os.devnull, "w")
     return 0

@@ -68,7 +68,8 @@ class LambdaMechanism(Mechanism):
                                 error.valid_range) from None
         coupler = inner.angle("coupler")
         end = point_on_link(inner.point("A"), coupler, 2.0 * self.half_coupler)
-        return Solution(crank.value, order, angles={"crank": crank, "coupler": coupler, "rocker": inner.angle("rocker")},
+        return Solution(crank.value, order,
+                        angles={"crank": crank, "coupler": coupler, "rocker": inner.angle("rocker")},
                         points={"O": inner.point("O"), "A": inner.point("A"), "C": inner.point("B"), "B": end,
                                 "D": inner.point("C")},
                         links=self.links, singular=inner.singular)

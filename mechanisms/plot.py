@@ -156,7 +156,7 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labe
         elif isinstance(item, Bar):
             pts = [where[j] for j in item.joints]
             artists += ax.plot([p.real for p in pts], [p.imag for p in pts], color=ROLE_COLOURS.get(item.role, "k"),
-                               lw=3.0, solid_capstyle="round", zorder=2, label=item.link)
+                               lw=3.0, solid_capstyle="round", zorder=2, label="_nolegend_", gid=item.link)
         elif isinstance(item, Block):
             angle = item.angle if isinstance(item.angle, (int, float)) else float(
                 solution.angle(item.angle).value[index])
@@ -240,7 +240,8 @@ def vectors_along(motion: PointMotion, every: int = 1, ax=None, scale_velocity: 
     return ax
 
 
-def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None, step_deg: int = 30):
+def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None, step_deg: int = 30,
+            colours: Iterable[str] | None = None):
     """Quantities against the crank angle (degrees, ticks every ``step_deg``).
 
     Parameters
@@ -251,12 +252,16 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None
         ``{label: values}``; the label goes into the legend when there is more than one.
     ylabel : str
         Axis label with its unit.
+    colours : iterable of str, optional
+        One colour per curve; by default :data:`PATH_COLOURS`, the colours of
+        :func:`trajectories`, so a point keeps its colour from path to diagram.
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 3.2))
     deg = np.degrees(phi)
+    colours = iter(colours if colours is not None else PATH_COLOURS * 4)
     for label, values in curves.items():
-        ax.plot(deg, values, label=label)
+        ax.plot(deg, values, label=label, color=next(colours))
     lo, hi = np.floor(deg.min() / step_deg) * step_deg, np.ceil(deg.max() / step_deg) * step_deg
     ax.set_xticks(np.arange(lo, hi + 0.5 * step_deg, step_deg))
     ax.set_xlim(deg.min(), deg.max())

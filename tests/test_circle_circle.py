@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 from mechanisms.blocks.circle_circle import hinge
 from mechanisms.errors import AssemblyError, InvalidParameterError
 from mechanisms.motion import PointMotion
-from strategies import lengths, points, rates
+from strategies import lengths, points
 
 
 def moving_point(position, velocity, acceleration):

@@ -88,6 +88,9 @@ def test_text_table_is_readable():
     assert out.startswith("test-yoke: crank = 0.1 m; omega = 10 1/s")
     assert "slider B" in out and "s, m" in out and "v, m/s" in out
     assert len([ln for ln in out.splitlines() if ln.strip().startswith("330.0")]) == 5  # 1 link, 3 points, 1 slider
+    # round-off is not printed as a number: at φ = 90° the slider is at s = 0 exactly, not 6e-18
+    ninety = [ln.split() for ln in out.split("slider B")[1].splitlines() if ln.strip().startswith("90.0")][0]
+    assert ninety[1] == "0"
 
 
 @pytest.mark.parametrize("args, message", [

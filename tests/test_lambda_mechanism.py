@@ -7,7 +7,7 @@ import pytest
 
 from mechanisms import AssemblyError, DeadCentreWarning, InvalidParameterError, LambdaMechanism
 from mechanisms.analysis.four_bar import straight_part
-from mechanisms.verify import constraint_residual, distance_deviation, generic_errors, solve_constraints
+from mechanisms.verify import constraint_residual, distance_deviation, generic_errors
 
 
 def test_against_the_generic_solver():

@@ -19,8 +19,9 @@ def test_draw_puts_every_joint_and_label():
     hinge_line = [ln for ln in ax.lines if ln.get_marker() == "o"][0]
     np.testing.assert_allclose(hinge_line.get_xdata(), [0.0, 0.1 * np.cos(PHI[1]), 0.1 * np.cos(PHI[1])], atol=1e-15)
     assert ax.get_aspect() == 1.0
-    crank_bar = [ln for ln in ax.lines if ln.get_label() == "crank"][0]
+    crank_bar = [ln for ln in ax.lines if ln.get_gid() == "crank"][0]
     assert crank_bar.get_color() == plot.ROLE_COLOURS["crank"]
+    assert all(ln.get_label().startswith("_") for ln in ax.lines)  # a later legend lists no bars
     plt.close("all")
 
 

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..base import Mechanism, Solution
-from ..errors import InvalidParameterError, require_branch, require_finite, require_length
+from ..errors import AssemblyError, InvalidParameterError, require_branch, require_finite, require_length
 from ..motion import AngleMotion, PointMotion
 
 __all__ = [
@@ -421,6 +421,14 @@ def lambda_mechanism_gamma(psi, crank: float, half_coupler: float, ground: float
     d = require_length("ground", ground)
     psi = np.asarray(psi, dtype=float)
     big_a = r * r + d * d + 2.0 * r * d * np.cos(psi)
+    reach = 4.0 * b * b - big_a
+    if np.any(reach < 0.0):
+        raise AssemblyError("the lambda mechanism cannot be assembled: the pin is farther than 2b from the "
+                            "rocker pivot", angles=psi[reach < 0.0])
     numerator = (d**3 + r * (r * r + 3.0 * d * d) * np.cos(psi) + r * r * d * (2.0 + np.cos(2.0 * psi))
-                 + r * np.sin(psi) * np.sqrt(big_a * (4.0 * b * b - big_a)))
-    return np.arccos(np.clip(numerator / (2.0 * b * big_a), -1.0, 1.0))
+                 + r * np.sin(psi) * np.sqrt(big_a * reach))
+    ratio = numerator / (2.0 * b * big_a)
+    # |ratio| ≤ 1 holds exactly; only round-off can exceed it, and only that is clamped
+    if np.any(np.abs(ratio) > 1.0 + 1e-9):
+        raise ValueError("cos γ out of [−1, 1] beyond round-off: the formula does not apply")
+    return np.arccos(np.clip(ratio, -1.0, 1.0))

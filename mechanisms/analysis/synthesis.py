@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import AssemblyError, DeadCentreWarning, InvalidParameterError, require_finite, require_length
+from ..errors import DeadCentreWarning, InvalidParameterError, require_finite, require_length
 from ..four_bar import FourBar
 from .four_bar import grashof_class, transmission_angle
 
