@@ -34,6 +34,8 @@ __all__ = [
     "animate_links",
     "annotate_angle",
     "annotate_length",
+    "annotate_dimension",
+    "draw_positions",
 ]
 
 ROLE_COLOURS = {
@@ -194,6 +196,48 @@ def annotate_length(ax, first: complex, second: complex, label: str, offset: flo
     """Write a length's symbol beside the segment first–second, ``offset`` m to its left."""
     middle = 0.5 * (first + second) + offset * 1j * np.exp(1j * np.angle(second - first))
     ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11)
+
+
+def annotate_dimension(ax, start: complex, end: complex, label: str, both: bool = True,
+                       offset: float = 0.0) -> None:
+    """A dimension arrow from ``start`` to ``end`` (m) with its symbol beside the middle.
+
+    ``both`` draws a double-headed arrow (a length such as an offset e); otherwise a single
+    arrow from start to end (a coordinate such as the slider's s). The label sits ``offset`` m
+    to the left of the arrow (default: 4 % of its length).
+    """
+    ax.annotate("", xy=(end.real, end.imag), xytext=(start.real, start.imag),
+                arrowprops={"arrowstyle": "<->" if both else "->", "color": "0.2", "lw": 0.9})
+    direction = np.exp(1j * np.angle(end - start))
+    where = 0.5 * (start + end) + (offset or 0.06 * abs(end - start) + 0.004) * 1j * direction
+    ax.text(where.real, where.imag, label, ha="center", va="center", fontsize=11)
+
+
+def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[int] | None = None, ax=None,
+                   paths: dict[str, PointMotion] | None = None, **draw_options):
+    """A family of positions: the mechanism drawn at several crank angles, over point paths.
+
+    Parameters
+    ----------
+    mechanism, solution
+        What to draw; ``solution`` needs positions only.
+    indices : iterable of int, optional
+        Positions to draw (default: all of the solution's).
+    paths : dict, optional
+        ``{label: PointMotion}`` trajectories drawn underneath, in :data:`PATH_COLOURS`,
+        with a legend.
+    draw_options
+        Passed to :func:`draw` (``labels``, ``size``, ``guide_half_length``); labels are off
+        by default.
+    """
+    ax = _new_axes(ax)
+    if paths:
+        trajectories(solution, paths, ax=ax)
+        ax.legend(loc="upper right", ncol=2)
+    draw_options.setdefault("labels", False)
+    for i in range(len(solution)) if indices is None else indices:
+        draw(mechanism, solution, i, ax=ax, **draw_options)
+    return ax
 
 
 def trajectories(solution: Solution, points: dict[str, PointMotion] | Sequence[str], ax=None,

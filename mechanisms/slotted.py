@@ -163,8 +163,8 @@ class RockerInBlock(Mechanism):
     (A→B, angle ψ; ``point_on("rocker", ρ)`` gives any point of it). Slider ``B``: the block's distance
     from A along the rocker (m), with ``coriolis``, the Coriolis acceleration 2 ψ_t t_t of the block relative to
     the rocker (m/s², positive towards the rocker's left; the block's own centre does not move, so this
-    term, the rocker point's acceleration and the relative one add up to zero). The block oscillates when |OB| > r, rotates
-    when |OB| < r, and when |OB| = r the rocker turns at exactly half the crank's speed (source 002)
+    term, the rocker point's acceleration and the relative one add up to zero). The block oscillates when
+    |OB| > r, rotates when |OB| < r, and when |OB| = r the rocker turns at exactly half the crank's speed (source 002)
     and the block passes through the hinge A (the distance is then signed).
     """
 
@@ -415,7 +415,7 @@ class SliderOnCoupler(Mechanism):
     L is a pair of sliding pairs.
     """
 
-    cli_name = "slider-on-coupler"
+    # not on the command line: its guide angle is in rad, and the command line takes degrees only
     cli_parameters = (
         Parameter("crank", "length", "crank radius r = |OA|, m"),
         Parameter("rod", "length", "coupler length |AB|, m"),

@@ -67,3 +67,24 @@ def test_bad_inputs(capsys):
     assert status == 2 and "lever" in err
     with pytest.raises(SystemExit):
         main(["table", "slotted-lever", "--crank", "0.1", "--pivot", "0.3", "--omega", "1"])
+
+
+def test_other_slotted_mechanisms(capsys):
+    # Shaper at φ = 90°: A = (0, 0.1) right above C = (0, −0.4), so the lever is vertical and B = (0, 0.2); the rod
+    # of 0.15 m reaches the guide y = 0.22 at x_D = √(0.15² − 0.02²) (hand).
+    status, out, _ = run(capsys, ["table", "shaper", "--crank", "0.1", "--pivot", "0,-0.4", "--lever", "0.6",
+                                  "--rod", "0.15", "--ram-height", "0.22", "--omega", "6", "--angles", "90:91:1",
+                                  "--format", "json"])
+    assert status == 0
+    row = json.loads(out)["rows"][0]
+    assert row["sliders"]["D"]["s"] == pytest.approx(math.sqrt(0.15**2 - 0.02**2), abs=1e-15)
+    assert row["links"]["lever"]["angle_deg"] == pytest.approx(90.0, abs=1e-12)
+    assert set(row["sliders"]) == {"A", "D"} and "coriolis" in row["sliders"]["A"]
+    # Rocker in a block (source 002, r = 2, block at (0, 2) = on the crank circle): ω = ω1/2 (hand)
+    status, out, _ = run(capsys, ["table", "rocker-in-block", "--crank", "2", "--pivot", "0,2", "--omega", "0.5",
+                                  "--positions", "8", "--format", "json"])
+    assert status == 0
+    assert all(r["links"]["rocker"]["omega"] == pytest.approx(0.25, abs=1e-15) for r in json.loads(out)["rows"])
+    status, out, _ = run(capsys, ["table", "slotted-rockers", "--crank", "0.1", "--pivot", "0,0.3", "--rocker-pivot",
+                                  "0.12,0.38", "--rocker", "0.2", "--omega", "10", "--format", "csv"])
+    assert status == 0 and "D.coriolis" in out.splitlines()[0] and len(out.splitlines()) == 13

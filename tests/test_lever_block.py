@@ -31,8 +31,8 @@ def test_hand_calculation():
     # A − C = (0.1, −0.3): L = √0.1 m, ξ = atan2(−0.3, 0.1); v_A = (0, 1), a_A = (−10, 0).
     # L_t = (A − C)·v_A / L = −0.3/√0.1; ξ_t = (A − C) × v_A / L² = 0.1/0.1 = 1 rad/s;
     # L_tt = ((A − C)·a_A + |v_A|² − L_t²)/L = (−1 + 1 − 0.9)/√0.1;
-    # ξ_tt = ((A − C) × a_A − 2 L L_t ξ_t)/L² = (−3 + 2·0.3)/0.1... with (A − C) × a_A = 0.1·0 − (−0.3)(−10) = −3:
-    # ξ_tt = (−3 − 2·(−0.3))/0.1 = −24 rad/s²; Coriolis 2 ξ_t L_t = −0.6/√0.1 m/s².
+    # ξ_tt = ((A − C) × a_A − 2 L L_t ξ_t)/L² with (A − C) × a_A = 0.1·0 − (−0.3)(−10) = −3 and 2 L L_t ξ_t = −0.6:
+    # ξ_tt = (−3 + 0.6)/0.1 = −24 rad/s²; Coriolis 2 ξ_t L_t = −0.6/√0.1 m/s².
     pin = PointMotion(np.array([0.1 + 0j]), np.array([1j]), np.array([-10 + 0j]))
     block = lever_block(pin, 0.3j)
     assert isinstance(block, LeverBlock)
@@ -60,7 +60,8 @@ def test_textbook_relations(geometry, omega):
     phi3 = np.arctan2(r * np.sin(PHI) - b, r * np.cos(PHI) - a)
     np.testing.assert_allclose(block.distance.value, l3, rtol=1e-9, atol=1e-12 * r)
     np.testing.assert_allclose(wrap(block.lever_angle.value - phi3), 0.0, atol=1e-12)
-    np.testing.assert_allclose(block.distance.velocity, -omega * r * np.sin(PHI - phi3), atol=1e-11 * r * (1 + abs(omega)))
+    np.testing.assert_allclose(block.distance.velocity, -omega * r * np.sin(PHI - phi3),
+                               atol=1e-11 * r * (1 + abs(omega)))
     np.testing.assert_allclose(block.lever_angle.omega, omega * r * np.cos(PHI - phi3) / l3,
                                atol=1e-11 * (1 + abs(omega)) * r / l3.min())
 
@@ -124,8 +125,9 @@ def test_lecture_second_derivative_of_current_length_is_a_typo():
     a, b = pivot.real, pivot.imag
     length = np.hypot(x - a, y - b)
     length_t = (vx * (x - a) + vy * (y - b)) / length
-    printed = (ax * (x - a) + ay * (y - b) + ax + ay) / length - (vx * (x - a) + vy * (y - b)) / length**2 * length_t
-    corrected = (ax * (x - a) + ay * (y - b) + vx**2 + vy**2) / length - (vx * (x - a) + vy * (y - b)) / length**2 * length_t
+    tail = (vx * (x - a) + vy * (y - b)) / length**2 * length_t
+    printed = (ax * (x - a) + ay * (y - b) + ax + ay) / length - tail
+    corrected = (ax * (x - a) + ay * (y - b) + vx**2 + vy**2) / length - tail
     numeric = central_difference(lambda p: np.abs(r * np.exp(1j * p) - pivot), PHI, omega, 1e-4, 2)
     np.testing.assert_allclose(corrected, numeric, atol=1e-5)
     assert np.max(np.abs(printed - numeric)) > 1.0  # m/s²: the printed form is wrong

@@ -65,3 +65,20 @@ def test_animation_needs_no_network():
     html = plot.animate(yoke, yoke.solve(PHI, order=0), frames=3)
     assert "https://" not in html and "http://" not in html
     assert 'class="fa' not in html and "▶" in html
+
+
+def test_draw_positions_draws_each_position_over_its_paths():
+    yoke = ScotchYoke(0.1)
+    sol = yoke.solve(PHI, order=0)
+    ax = plot.draw_positions(yoke, sol, indices=[0, 3, 6], paths={"A": sol.point("A")})
+    hinge_sets = [ln for ln in ax.lines if ln.get_marker() == "o"]
+    assert len(hinge_sets) == 3 and len(ax.texts) == 0   # three positions, no joint labels
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["A"]
+    plt.close("all")
+
+
+def test_annotate_dimension_writes_its_label():
+    _, ax = plt.subplots()
+    plot.annotate_dimension(ax, 0j, 0.2 + 0j, "$s$", both=False)
+    assert [t.get_text() for t in ax.texts if t.get_text()] == ["$s$"]
+    plt.close("all")

@@ -52,7 +52,8 @@ def test_slotted_lever_against_generic_solver(geometry, omega, alpha):
 
 
 @settings(max_examples=15, deadline=None)
-@given(crank=st.floats(0.05, 0.2, **finite), distance=st.floats(1.3, 3.0, **finite), offset=st.floats(-0.5, 0.5, **finite),
+@given(crank=st.floats(0.05, 0.2, **finite), distance=st.floats(1.3, 3.0, **finite),
+       offset=st.floats(-0.5, 0.5, **finite),
        excess=st.floats(1.1, 1.5, **finite), rod=st.floats(1.0, 3.0, **finite), branch=branches,
        omega=st.floats(-20, 20, **finite))
 def test_shaper_against_generic_solver(crank, distance, offset, excess, rod, branch, omega):
@@ -265,3 +266,17 @@ def test_rocker_in_block_source_002_special_case():
     np.testing.assert_allclose(sol.angle("rocker").omega, 0.25)
     np.testing.assert_allclose(sol.angle("rocker").alpha, 0.0)
     assert np.all(np.isfinite(sol.point_on("rocker", 4.0).acceleration))
+
+
+def test_slider_on_coupler_guide_angle():
+    # μ from sin μ = h/L2 (lecture) equals −ψ, the coupler angle of the circle–line block (another method),
+    # for the slider on the right of the crank pin; and L lies on both lines (hand: cross products vanish).
+    m = mech.SliderOnCoupler(0.08, 0.3, (0.2, 0.0), np.radians(70.0))
+    sol = m.solve(PHI, 10.0, 3.0)
+    mu, psi = m.guide_angle_of_coupler(sol), sol.angle("coupler")
+    np.testing.assert_allclose(mu.value, -psi.value, atol=1e-15)
+    np.testing.assert_allclose(mu.omega, -psi.omega, atol=1e-12)
+    np.testing.assert_allclose(mu.alpha, -psi.alpha, atol=1e-10)
+    L, A = sol.point("L").value, sol.point("A").value
+    np.testing.assert_allclose(np.imag(np.conj(np.exp(1j * psi.value)) * (L - A)), 0.0, atol=1e-15)
+    np.testing.assert_allclose(np.imag(np.exp(-1j * np.radians(70.0)) * (L - 0.2)), 0.0, atol=1e-15)

@@ -424,7 +424,7 @@ def lambda_mechanism_gamma(psi, crank: float, half_coupler: float, ground: float
     reach = 4.0 * b * b - big_a
     if np.any(reach < 0.0):
         raise AssemblyError("the lambda mechanism cannot be assembled: the pin is farther than 2b from the "
-                            "rocker pivot", angles=psi[reach < 0.0])
+                            "rocker pivot", angles=np.atleast_1d(psi)[np.atleast_1d(reach < 0.0)])
     numerator = (d**3 + r * (r * r + 3.0 * d * d) * np.cos(psi) + r * r * d * (2.0 + np.cos(2.0 * psi))
                  + r * np.sin(psi) * np.sqrt(big_a * reach))
     ratio = numerator / (2.0 * b * big_a)

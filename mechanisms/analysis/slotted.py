@@ -82,8 +82,9 @@ def limit_positions(mechanism: SlottedLever | Shaper) -> LimitPositions:
     Notes
     -----
     With γ the direction of the pivot C seen from O, the lever is tangent to the crank circle
-    at ``φ = γ ± (π/2 − β)``, and the lever angle there is ``ξ = arg(A − C)``. Counter-clockwise, the crank goes from ``γ + π/2 − β`` to
-    ``γ − π/2 + β + 2π`` through ``π + 2β`` (slow) and back through ``π − 2β`` (quick).
+    at ``φ = γ ± (π/2 − β)``, and the lever angle there is ``ξ = arg(A − C)``. Counter-clockwise,
+    the crank goes from ``γ + π/2 − β`` to ``γ − π/2 + β + 2π`` through ``π + 2β`` (slow) and back
+    through ``π − 2β`` (quick).
     """
     pivot = complex(*mechanism.pivot)
     r, d = mechanism.crank, abs(pivot)
