@@ -366,14 +366,15 @@ def make_variant(task: Task | str, seed: int, index: int, student: str | None = 
     task = _task(task)
     if not isinstance(positions, (int, np.integer)) or not 1 <= positions <= 360 // STEP_DEG:
         raise InvalidParameterError("positions", positions, f"a whole number from 1 to {360 // STEP_DEG}")
-    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(index,)))
+    # two independent streams: the positions do not depend on how many candidates were rejected
+    lengths, angles = (np.random.default_rng(s) for s in np.random.SeedSequence(seed, spawn_key=(index,)).spawn(2))
     for _ in range(max_tries):
         try:
-            mechanism, omega = task.sample(rng)
+            mechanism, omega = task.sample(lengths)
         except MechanismError:
             continue
         if not task.check(mechanism):
-            return Variant(student or f"s{index + 1:02d}", mechanism, omega, _positions(rng, positions))
+            return Variant(student or f"s{index + 1:02d}", mechanism, omega, _positions(angles, positions))
     raise MechanismError(f"no valid {task.name} variant in {max_tries} draws (seed {seed}, variant {index})")
 
 
@@ -453,6 +454,11 @@ INSTRUCTIONS = (
     "with every cell filled in; leave a cell empty only if you have no answer.")
 
 
+def _md(text: str) -> str:
+    """Text for a Markdown table cell (a ``|`` would end the cell)."""
+    return text.replace("|", "\\|")
+
+
 def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None) -> str:
     """The sheet as Markdown; ``image`` is the drawing's file name (omitted if None)."""
     task = _task(task)
@@ -461,10 +467,10 @@ def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None)
     if image:
         lines += [f"![The mechanism of {variant.student}]({image})", ""]
     lines += ["## Data", "", "| symbol | meaning | value | unit |", "|---|---|---|---|"]
-    lines += [f"| {s} | {m} | {v} | {u} |" for s, m, v, u in parts["data"]]
+    lines += ["| " + " | ".join(_md(c) for c in row) + " |" for row in parts["data"]]
     lines += ["", "## Task", "", f"Find, at the crank angles φ = {parts['positions']}:", "",
               "| column | symbol | quantity | unit |", "|---|---|---|---|"]
-    lines += [f"| `{q.column}` | {q.symbol} | {q.meaning} | {q.unit} |" for q in task.quantities]
+    lines += [f"| `{q.column}` | {_md(q.symbol)} | {_md(q.meaning)} | {_md(q.unit)} |" for q in task.quantities]
     lines += ["", INSTRUCTIONS.format(student=variant.student), "", "## Answers", "",
               "| position | φ, ° | " + " | ".join(f"{q.symbol}, {q.unit}" for q in task.quantities) + " |",
               "|---|---|" + "---|" * len(task.quantities)]

@@ -13,6 +13,7 @@ import io
 import json
 import math
 import os
+import re
 import sys
 import warnings
 from typing import Sequence
@@ -185,10 +186,24 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+_PAIR = re.compile(r"^-?[\d.]+(e-?\d+)?,-?[\d.]+(e-?\d+)?$")
+
+
+def _join_negative_pairs(argv: Sequence[str]) -> list[str]:
+    """``--frame -0.4,0.05`` → ``--frame=-0.4,0.05``: argparse takes a value starting with − for an option."""
+    out: list[str] = []
+    for token in argv:
+        if out and out[-1].startswith("--") and "=" not in out[-1] and token.startswith("-") and _PAIR.match(token):
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 2 bad input)."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv)))
     if args.command is None:
         parser.print_help()
         return 0

@@ -103,3 +103,9 @@ def test_bad_input_is_a_clear_error_not_a_crash(args, message):
     code, out, err = run("table", "test-yoke", *args)
     assert code == 2 and out == ""
     assert message in err
+
+
+def test_negative_pairs_are_values_not_options():
+    assert cli._join_negative_pairs(["--frame", "-0.4,0.05", "--crank", "1"]) == ["--frame=-0.4,0.05", "--crank", "1"]
+    assert cli._join_negative_pairs(["--frame", "0.4,-0.05"]) == ["--frame", "0.4,-0.05"]
+    assert cli._join_negative_pairs(["--omega", "-5"]) == ["--omega", "-5"]  # argparse reads plain negatives itself

@@ -174,7 +174,7 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
     every stage evaluates J_red, J_red' and M_c exactly (:func:`reduced_model`). For a smooth
     right-hand side the local error is O(h⁵) and the global error O(h⁴): halving the step
     divides the error by about 16. The tests measure it as the drift of the energy of a free
-    run (no drive, no load), which is conserved by the exact motion: below 1e-8 of the energy
+    run (no drive, no load), which is conserved by the exact motion: below 1e-7 of the energy
     after 5 revolutions at 200 steps per revolution, and falling about 16-fold when h halves.
     A load with a jump in its reduced torque lowers the order near the jump; choose h small
     against the angle over which the load changes.
