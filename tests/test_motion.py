@@ -57,7 +57,7 @@ def test_point_on_link_matches_numerical_differentiation(theta0, w0, e0, centre,
     rate = 1 + abs(w0) + abs(e0) + abs(w)
     # central differences: truncation O(h^2 r''') and O(H^2 r''''), round-off O(eps r/h) and O(eps r/H^2)
     np.testing.assert_allclose(got.velocity, first, atol=1e-9 * scale * rate**3)
-    np.testing.assert_allclose(got.acceleration, second, atol=2e-8 * scale * rate**4)
+    np.testing.assert_allclose(got.acceleration, second, atol=2e-8 * scale * rate**4 + 2e-7 * scale)
 
 
 @settings(max_examples=60, deadline=None)
@@ -142,7 +142,9 @@ def test_polar_matches_numerical_differentiation(centre, radius, w, pivot):
         first, second = numeric_time_derivatives(fn, T, angle=wrap)
         reach = (1 + abs(w)) ** 2 * (1 + radius) / max(np.min(dist(T)), 0.05) ** 2
         np.testing.assert_allclose(motion.velocity, first, atol=1e-8 * reach)
-        np.testing.assert_allclose(motion.acceleration, second, atol=1e-6 * reach * (1 + abs(w)) ** 2)
+        # plus the round-off of the second difference: about 4 ulp of the value over H² = 1e-8
+        floor = 1e-7 * (1 + np.max(np.abs(motion.value)))
+        np.testing.assert_allclose(motion.acceleration, second, atol=1e-6 * reach * (1 + abs(w)) ** 2 + floor)
 
 
 def test_slotted_link_length_erratum():
