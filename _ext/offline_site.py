@@ -22,8 +22,14 @@ def _drop_thebe(app, config):
             app.disconnect(listener.id)
 
 
+def _escape_line(line: str) -> str:
+    """Escape ``|…|`` outside inline literals (odd pieces between double backticks are literals)."""
+    pieces = line.split("``")
+    return "``".join(p if k % 2 else _MAGNITUDE.sub(r"\\|\1\\|", p) for k, p in enumerate(pieces))
+
+
 def _escape_magnitudes(app, what, name, obj, options, lines):
-    lines[:] = [_MAGNITUDE.sub(r"\\|\1\\|", line) for line in lines]
+    lines[:] = [_escape_line(line) for line in lines]
 
 
 def setup(app):

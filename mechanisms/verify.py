@@ -87,8 +87,36 @@ def _newton(constraints, q, phi, tol, max_iter):
                         "(no assembly, or the guess is far off)", phi[size > tol * (1.0 + np.max(np.abs(q), axis=0))])
 
 
+def _continue(constraints, guess, phi, tol, max_iter, max_step):
+    """Continuation from the first crank angle on, sub-stepping so no step exceeds ``max_step``.
+
+    Each solve starts from the linear extrapolation of the last two solutions, so the
+    solution follows the branch of the guess even across coarse steps between the positions.
+    """
+    q = np.empty((guess.size, phi.size))
+    path: list[tuple[float, np.ndarray]] = []   # the latest two (angle, solution) on the path
+    iterations = 0
+    for i in range(phi.size):
+        if i == 0:
+            targets = phi[:1]
+        else:
+            steps = max(1, int(np.ceil(abs(phi[i] - path[-1][0]) / max_step)))
+            targets = np.linspace(path[-1][0], phi[i], steps + 1)[1:]
+        for target in targets:
+            if len(path) == 2 and path[1][0] != path[0][0]:
+                (a0, q0), (a1, q1) = path
+                start = q1 + (q1 - q0) * (target - a1) / (a1 - a0)   # linear extrapolation
+            else:
+                start = path[-1][1] if path else guess
+            qi, used = _newton(constraints, start[:, None], np.array([target]), tol, max_iter)
+            path = path[-1:] + [(float(target), qi[:, 0])]
+            iterations = max(iterations, used)
+        q[:, i] = path[-1][1]
+    return q, iterations
+
+
 def solve_constraints(constraints: Constraints, guess, phi, omega=1.0, alpha=0.0, order: int = 2,
-                      tol: float = 1e-13, max_iter: int = 50) -> GenericSolution:
+                      tol: float = 1e-13, max_iter: int = 50, max_step: float = np.radians(2.0)) -> GenericSolution:
     """Solve the constraint equations Φ(q, φ) = 0 by Newton's method, with exact derivatives.
 
     Parameters
@@ -99,8 +127,9 @@ def solve_constraints(constraints: Constraints, guess, phi, omega=1.0, alpha=0.0
         :class:`~mechanisms.jet.Jet`).
     guess : array_like, shape (k,) or (k, n)
         Starting values. Shape (k,): the solution is continued position by position from the
-        first crank angle, so the branch of the guess is kept (order ``phi`` along the
-        motion). Shape (k, n): one guess per position, all solved at once.
+        first crank angle, in sub-steps of at most ``max_step``, so the branch of the guess is
+        kept (order ``phi`` along the motion). Shape (k, n): one guess per position, all
+        solved at once.
     phi : array_like, shape (n,)
         Crank angles φ (rad).
     omega, alpha : float or array_like
@@ -111,6 +140,8 @@ def solve_constraints(constraints: Constraints, guess, phi, omega=1.0, alpha=0.0
         Newton stops when every step is below ``tol·(1 + |q|)``.
     max_iter : int
         Iterations allowed per solve before :class:`AssemblyError`.
+    max_step : float
+        Largest crank-angle step (rad) of the continuation.
 
     Returns
     -------
@@ -128,15 +159,7 @@ def solve_constraints(constraints: Constraints, guess, phi, omega=1.0, alpha=0.0
     if guess.ndim == 2:
         q, iterations = _newton(constraints, guess.copy(), phi, tol, max_iter)
     else:
-        q = np.empty((guess.size, phi.size))
-        previous = [guess, guess]
-        iterations = 0
-        for i in range(phi.size):
-            start = 2 * previous[-1] - previous[-2] if i >= 2 else previous[-1]  # linear extrapolation
-            qi, used = _newton(constraints, start[:, None], phi[i:i + 1], tol, max_iter)
-            q[:, i] = qi[:, 0]
-            previous = [previous[-1], qi[:, 0]]
-            iterations = max(iterations, used)
+        q, iterations = _continue(constraints, guess, phi, tol, max_iter, max_step)
     residual, jac = _jacobian(constraints, q, phi)
     q_t = q_tt = None
     if order >= 1:

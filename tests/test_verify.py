@@ -152,3 +152,17 @@ def test_newton_history_converges_quadratically():
     for before, after in zip(residuals[1:3], residuals[2:4]):
         assert after < 10 * before**2
     np.testing.assert_allclose(history[-1][0], exact, atol=1e-15)
+
+
+def test_continuation_sub_steps_coarse_grids():
+    # a coarse grid (60° steps) with a rod barely longer than the crank: without sub-steps Newton
+    # lands on the mirror branch (s off by 0.17 m); expected, the hand solution on the guess's branch
+    l1, l2, e = 0.08, 0.085, 0.0
+    phi = np.radians(np.arange(0.0, 361.0, 60.0))
+    expected = slider_by_hand(l1, l2, e, phi, 1.0, 0.0)[0]
+    for max_step in (np.radians(2.0), np.radians(10.0)):
+        got = verify.solve_constraints(slider_loop(l1, l2, e), expected[:, 0], phi, order=0, max_step=max_step)
+        np.testing.assert_allclose(got.q[1], expected[1], atol=1e-14)
+        np.testing.assert_allclose(np.angle(np.exp(1j * (got.q[0] - expected[0]))), 0.0, atol=1e-13)
+    repeated = verify.solve_constraints(slider_loop(l1, l2, e), expected[:, 0], np.zeros(3), order=0)
+    np.testing.assert_allclose(repeated.q, np.repeat(expected[:, :1], 3, axis=1), atol=1e-15)
