@@ -489,11 +489,20 @@ h1 { font-size: 1.4em; margin-bottom: 0.2em; } h2 { font-size: 1.1em; margin-top
 table { border-collapse: collapse; margin: 0.5em 0; } td, th { border: 1px solid #999; padding: 0.25em 0.6em; }
 th { background: #eee; text-align: left; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
 table.answers td { height: 1.8em; min-width: 5em; } code, pre { font-family: "DejaVu Sans Mono", monospace; }
-pre { background: #f5f5f5; padding: 0.5em; } .name { margin: 0.5em 0 1em; } img { max-width: 100%; }
+pre { background: #f5f5f5; padding: 0.5em; white-space: pre-wrap; overflow-wrap: anywhere; } .name { margin: 0.5em 0 1em; } img { max-width: 100%; }
 .small { font-size: 0.85em; color: #555; }
 @media print { body { margin: 0; max-width: none; } pre { background: none; border: 1px solid #999; }
   @page { size: A4; margin: 15mm; } }
 """
+
+
+def _numeric(text: str) -> str:
+    """The class attribute of a table cell: numbers (and pairs of numbers) align right."""
+    try:
+        [float(t) for t in text.strip("()").split(",")]
+    except ValueError:
+        return ""
+    return ' class="num"'
 
 
 def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None) -> str:
@@ -509,7 +518,7 @@ def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None) -> 
            f'<img alt="The mechanism of {e(variant.student)}" src="data:image/png;base64,'
            f'{base64.b64encode(png).decode("ascii")}">',
            "<h2>Data</h2>", "<table><tr><th>symbol</th><th>meaning</th><th>value</th><th>unit</th></tr>"]
-    out += [f'<tr><td>{e(s)}</td><td>{e(m)}</td><td class="num">{e(v)}</td><td>{e(u)}</td></tr>'
+    out += [f'<tr><td>{e(s)}</td><td>{e(m)}</td><td{_numeric(v)}>{e(v)}</td><td>{e(u)}</td></tr>'
             for s, m, v, u in parts["data"]]
     out += ["</table>", "<h2>Task</h2>", f"<p>Find, at the crank angles φ = {e(parts['positions'])}:</p>",
             "<table><tr><th>column</th><th>symbol</th><th>quantity</th><th>unit</th></tr>"]

@@ -183,7 +183,65 @@ def build_parser() -> argparse.ArgumentParser:
         sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,V]",
                          help="a point fixed to LINK, U m along it from its first joint, V m to its left")
         sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
+    _add_course_commands(commands)
     return parser
+
+
+def _add_course_commands(commands) -> None:
+    """The subcommands ``assign`` and ``check``: course assignments (:mod:`mechanisms.assign`) and
+    their grading (:mod:`mechanisms.grading`)."""
+    from .assign import TASKS
+    from .grading import DEFAULT_RELATIVE
+
+    assign = commands.add_parser(
+        "assign", help="make a variant of a mechanism for every student: sheets and an answer key",
+        description="Make N valid variants of a mechanism (lengths, crank speed, crank positions), a printable "
+                    "sheet for each (HTML and Markdown), an answer form for each, and one answer key (key.csv).")
+    assign.add_argument("mechanism", choices=sorted(TASKS), metavar="MECHANISM",
+                        help="one of " + ", ".join(sorted(TASKS)))
+    assign.add_argument("--students", type=int, required=True, help="number of students N (variants s01 … sNN)")
+    assign.add_argument("--seed", type=int, default=None,
+                        help="seed of the random variants (default: a new one, printed so the run can be repeated)")
+    assign.add_argument("--positions", type=int, default=3, help="crank positions per variant (default 3)")
+    assign.add_argument("--out", default="assignment", help="output folder (default ./assignment)")
+    check = commands.add_parser(
+        "check", help="grade answer files against an answer key",
+        description="Grade answer files against the key written by `assign`: per student and per quantity, what is "
+                    "right, what is wrong and by how much, and which answers are missing or unreadable.")
+    check.add_argument("key", metavar="KEY.csv", help="the answer key written by `assign`")
+    check.add_argument("answers", metavar="ANSWERS.csv", nargs="+", help="one or more answer files")
+    check.add_argument("--relative", type=float, default=100 * DEFAULT_RELATIVE, metavar="PERCENT",
+                       help=f"relative tolerance in %% (default {100 * DEFAULT_RELATIVE:g}); each kind of quantity "
+                            "also has an absolute floor")
+    check.add_argument("--marks", metavar="FILE.csv", help="also write every mark to this CSV file")
+
+
+def _assign(args: argparse.Namespace) -> str:
+    import secrets
+
+    from .assign import make_variants, write_assignment
+
+    seed = args.seed if args.seed is not None else secrets.randbelow(10**6)
+    variants = make_variants(args.mechanism, args.students, seed, args.positions)
+    written = write_assignment(args.mechanism, variants, args.out, seed=seed)
+    first, last = variants[0].student, variants[-1].student
+    return "\n".join([
+        f"{args.mechanism}: {len(variants)} variants ({first} … {last}), seed {seed}, written to {args.out}/:",
+        f"  sheets        {first}.html … {last}.html and {first}.md … {last}.md (drawings {first}.png …)",
+        f"  answer forms  {first}-answers.csv … {last}-answers.csv",
+        f"  answer key    {written['key'][0].name}   (keep it from the students)",
+        f"  variants      {written['variants'][0].name}",
+        f"Grade with: python -m mechanisms check {written['key'][0]} ANSWERS.csv …"])
+
+
+def _check(args: argparse.Namespace) -> tuple[str, int]:
+    from .grading import check_files
+
+    report = check_files(args.key, args.answers, relative=args.relative / 100.0)
+    if args.marks:
+        with open(args.marks, "w", encoding="utf8", newline="") as handle:
+            handle.write(report.csv())
+    return report.text(), (1 if report.problems else 0)
 
 
 _PAIR = re.compile(r"^-?[\d.]+(e-?\d+)?,-?[\d.]+(e-?\d+)?$")
@@ -201,12 +259,30 @@ def _join_negative_pairs(argv: Sequence[str]) -> list[str]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status (0 ok, 2 bad input)."""
+    """Run the command line; returns the exit status (0 ok, 2 bad input).
+
+    ``check`` returns 1 when it graded the answers but found problems in the answer files
+    (unknown student ids, repeated rows …), and 2 when a file could not be graded at all.
+    """
     parser = build_parser()
     args = parser.parse_args(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv)))
     if args.command is None:
         parser.print_help()
         return 0
+    if args.command in ("assign", "check"):
+        try:
+            if args.command == "assign":
+                print(_assign(args))
+                return 0
+            text, status = _check(args)
+            print(text)
+            return status
+        except MechanismError as error:
+            print(f"error: {error}", file=sys.stderr)
+            return 2
+        except OSError as error:
+            print(f"error: {error.filename or ''}: {error.strerror}", file=sys.stderr)
+            return 2
     if args.command == "table" and args.mechanism is None:
         parser.parse_args(["table", "--help"])
     try:

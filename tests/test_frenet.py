@@ -47,7 +47,7 @@ def assert_same_point(law, solution, link, rho, scale):
         assert np.max(np.abs(ours - theirs)) <= tolerance * max(1.0, np.max(np.abs(theirs))), what
 
 
-omegas = st.floats(0.3, 20.0, **finite).map(lambda w: w) | st.floats(-20.0, -0.3, **finite)
+omegas = st.floats(0.3, 20.0, **finite) | st.floats(-20.0, -0.3, **finite)
 alphas = st.floats(-30.0, 30.0, **finite)
 rhos = st.floats(-5.0, 5.0, **finite)
 turn = np.linspace(0.0, 2.0 * np.pi, 25)[:-1] + 0.1
@@ -55,7 +55,7 @@ turn = np.linspace(0.0, 2.0 * np.pi, 25)[:-1] + 0.1
 
 # --- Frenet frame against the direct method, random geometries ----------------------------------
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(crank_slider_geometries(), st.sampled_from([1, -1]), omegas, alphas, rhos)
 def test_crank_slider_points_equal_the_direct_method(geometry, branch, omega, alpha, rho):
     crank, rod, offset = geometry
@@ -64,7 +64,7 @@ def test_crank_slider_points_equal_the_direct_method(geometry, branch, omega, al
     assert_same_point(law, m.solve(turn, omega, alpha), "coupler", rho, 1.0)
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(crank_rockers(), omegas, alphas, rhos)
 def test_four_bar_points_equal_the_direct_method(geometry, omega, alpha, rho):
     crank, coupler, rocker, frame, branch = geometry
@@ -83,7 +83,7 @@ def lambda_geometries(draw):
     return r, b, d
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(lambda_geometries(), omegas, alphas, rhos)
 def test_lambda_mechanism_points_equal_the_direct_method(geometry, omega, alpha, rho):
     m = mech.LambdaMechanism(*geometry)
@@ -91,7 +91,7 @@ def test_lambda_mechanism_points_equal_the_direct_method(geometry, omega, alpha,
     assert_same_point(law, m.solve(turn, omega, alpha), "coupler", rho, 1.0)
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(slotted_lever_geometries(), omegas, alphas, rhos)
 def test_rocker_in_block_points_equal_the_direct_method(geometry, omega, alpha, rho):
     crank, pivot = geometry
@@ -112,7 +112,7 @@ def test_rotation_law_of_a_solution_matches_the_generic_solver():
 
 # --- closed forms derived in chapter 7 --------------------------------------------------------
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(crank_slider_geometries(), st.sampled_from([1, -1]))
 def test_crank_slider_law_closed_form(geometry, branch):
     crank, rod, offset = geometry
@@ -124,7 +124,7 @@ def test_crank_slider_law_closed_form(geometry, branch):
     assert np.allclose(phi_ss, reference.phi_ss, rtol=1e-8, atol=1e-8 / crank**2)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(slotted_lever_geometries())
 def test_rocker_in_block_law_closed_form(geometry):
     crank, pivot = geometry

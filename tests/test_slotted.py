@@ -280,3 +280,18 @@ def test_slider_on_coupler_guide_angle():
     L, A = sol.point("L").value, sol.point("A").value
     np.testing.assert_allclose(np.imag(np.conj(np.exp(1j * psi.value)) * (L - A)), 0.0, atol=1e-15)
     np.testing.assert_allclose(np.imag(np.exp(-1j * np.radians(70.0)) * (L - 0.2)), 0.0, atol=1e-15)
+
+
+@pytest.mark.parametrize("m", [mech.SlottedLever(0.1, (0, 0.3)), mech.SlottedLever(0.1, (0, 0.1)),
+                               mech.RockerInBlock(2.0, (0, 1.0)), mech.Shaper(0.1, (0, -0.3), 0.5, 0.2, 0.2),
+                               mech.SlottedRockers(0.1, (0, 0.3), (0.1, 0.35), 0.2),
+                               mech.SliderOnCoupler(0.08, 0.3, (0.2, 0.1), 1.2)])
+def test_orders_compute_only_what_is_asked(m):
+    # order 0: positions only (no derivatives anywhere); order 1: velocities equal those of order 2 (same formulas)
+    s0, s1, s2 = (m.solve(PHI, 3.0, 1.0, order=k) for k in (0, 1, 2))
+    for s, k in ((s0, 0), (s1, 1), (s2, 2)):
+        assert all(s.angle(n).order == k for n in s.angle_names) and all(s.slider(n).order == k for n in s.slider_names)
+    for name in s2.angle_names:
+        np.testing.assert_array_equal(s1.angle(name).omega, s2.angle(name).omega)
+    for name in s2.point_names:
+        np.testing.assert_array_equal(s0.point(name).value, s2.point(name).value)
