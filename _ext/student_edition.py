@@ -3,11 +3,12 @@
 With ``hide_solutions = True`` sphinx-exercise 1.2.1 makes a ``solution-start`` directive produce
 nothing, but the cells between it and its ``solution-end`` (the worked solution's code and
 text) stay in the document, and so does the ``solution-end`` node, which the HTML writer cannot
-write: the build fails ("departing unknown node type: solution_end_node"). This extension replaces ``solution-start`` by a directive that, in
-that case, leaves a marker; a transform then removes the marker, everything after it up to the
-matching ``solution-end``, and that end. It also turns off the theme's download button, whose
-links would give the page's source, solutions included (Jupyter Book 1 does not pass
-``html.use_download_button`` on to the theme). With ``hide_solutions = False`` it changes nothing.
+write: the build fails ("departing unknown node type: solution_end_node"). This extension
+replaces ``solution-start`` by a directive that, in that case, leaves a marker; a transform then
+removes the marker, everything after it up to the matching ``solution-end``, and that end.
+It also turns off the theme's download button, whose links would give the page's source,
+solutions included (Jupyter Book 1 does not pass ``html.use_download_button`` on to the theme).
+With ``hide_solutions = False`` it changes nothing.
 
 Only the student edition loads it (see ``tools/student_config.py``).
 """

@@ -27,7 +27,7 @@ import json
 import math
 import pathlib
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Sequence
 
 import numpy as np
@@ -147,7 +147,6 @@ class Task:
     data: Callable[[Mechanism], list[tuple[str, str, str, str]]]
     quantities: tuple[Quantity, ...]
     conditions: str
-    notes: tuple[str, ...] = field(default=())
 
 
 def _mm(value: float) -> float:
@@ -488,8 +487,10 @@ body { font-family: "DejaVu Sans", Arial, sans-serif; max-width: 46em; margin: 1
 h1 { font-size: 1.4em; margin-bottom: 0.2em; } h2 { font-size: 1.1em; margin-top: 1.2em; }
 table { border-collapse: collapse; margin: 0.5em 0; } td, th { border: 1px solid #999; padding: 0.25em 0.6em; }
 th { background: #eee; text-align: left; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
-table.answers td { height: 1.8em; min-width: 5em; } code, pre { font-family: "DejaVu Sans Mono", monospace; }
-pre { background: #f5f5f5; padding: 0.5em; white-space: pre-wrap; overflow-wrap: anywhere; } .name { margin: 0.5em 0 1em; } img { max-width: 100%; }
+table.answers { width: 100%; table-layout: fixed; } table.answers td { height: 1.8em; }
+table.answers th { font-size: 0.85em; overflow-wrap: anywhere; } code, pre { font-family: "DejaVu Sans Mono", monospace; }
+pre { background: #f5f5f5; padding: 0.5em; white-space: pre-wrap; overflow-wrap: anywhere; }
+.name { margin: 0.5em 0 1em; } img { max-width: 100%; }
 .small { font-size: 0.85em; color: #555; }
 @media print { body { margin: 0; max-width: none; } pre { background: none; border: 1px solid #999; }
   @page { size: A4; margin: 15mm; } }

@@ -3,6 +3,8 @@
 ``table`` prints the kinematic table of a mechanism over crank positions, like the classic
 course programs do for 12 positions. Every mechanism class that sets ``cli_name`` appears
 as a ``table`` subcommand with its ``cli_parameters``; degrees at the interface, radians inside.
+``assign`` and ``check`` set and grade course assignments (:mod:`mechanisms.assign`,
+:mod:`mechanisms.grading`).
 """
 
 from __future__ import annotations
@@ -184,7 +186,36 @@ def build_parser() -> argparse.ArgumentParser:
                          help="a point fixed to LINK, U m along it from its first joint, V m to its left")
         sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
     _add_course_commands(commands)
+    _add_bench_command(commands)
     return parser
+
+
+def _add_bench_command(commands) -> None:
+    """The subcommand ``bench``: time per position against error (:mod:`mechanisms.bench`)."""
+    bench = commands.add_parser(
+        "bench", help="time per position against error: closed form, Newton, finite differences, peers",
+        description="Time every method of chapter 8 on the crank-slider, the four-bar and the slotted lever, side "
+                    "by side in one process: time per position (best of R runs) and the largest error against "
+                    "an extended-precision reference. pylinkage is timed too when installed (the bench extra).")
+    bench.add_argument("--sizes", default="1000,100000,1000000", metavar="N,N,…",
+                       help="numbers of crank positions (default 1000,100000,1000000)")
+    bench.add_argument("--repeat", type=int, default=3, metavar="R", help="best of R runs (default 3)")
+    bench.add_argument("--format", choices=("text", "json"), default="text")
+
+
+def _bench(args: argparse.Namespace) -> str:
+    from . import bench
+
+    try:
+        sizes = [int(v) for v in args.sizes.split(",")]
+    except ValueError:
+        raise InvalidParameterError("--sizes", args.sizes, "whole numbers N,N,… ≥ 1") from None
+    if not sizes or min(sizes) < 1:
+        raise InvalidParameterError("--sizes", args.sizes, "whole numbers N,N,… ≥ 1")
+    if args.repeat < 1:
+        raise InvalidParameterError("--repeat", args.repeat, "a whole number ≥ 1")
+    report = bench.run(sizes, args.repeat)
+    return bench.format_json(report) if args.format == "json" else bench.format_text(report)
 
 
 def _add_course_commands(commands) -> None:
@@ -237,6 +268,8 @@ def _assign(args: argparse.Namespace) -> str:
 def _check(args: argparse.Namespace) -> tuple[str, int]:
     from .grading import check_files
 
+    if not (math.isfinite(args.relative) and 0.0 <= args.relative < 100.0):
+        raise InvalidParameterError("--relative", args.relative, "a percentage from 0 to less than 100")
     report = check_files(args.key, args.answers, relative=args.relative / 100.0)
     if args.marks:
         with open(args.marks, "w", encoding="utf8", newline="") as handle:
@@ -268,6 +301,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv)))
     if args.command is None:
         parser.print_help()
+        return 0
+    if args.command == "bench":
+        try:
+            print(_bench(args))
+        except MechanismError as error:
+            print(f"error: {error}", file=sys.stderr)
+            return 2
         return 0
     if args.command in ("assign", "check"):
         try:

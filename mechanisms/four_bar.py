@@ -321,7 +321,9 @@ class FourBar(Mechanism):
         pin = crank_pin(crank, self.crank)
         pivot = fixed_point(self.pivot, phi, order)
         try:
-            joint = hinge(pin, pivot, self.coupler, self.rocker, self.sides(phi), phi)
+            # one side for all positions unless the crank passes change points
+            side = self.branch if self.keep_side or not self.change_points() else self.sides(phi)
+            joint = hinge(pin, pivot, self.coupler, self.rocker, side, phi)
         except AssemblyError as error:
             intervals = self.assembly_intervals()
             reason = f"the four-bar cannot be assembled: {error.reason}"

@@ -17,7 +17,8 @@ Problems with a file are of two sorts. A file that cannot be graded at all (miss
 without the ``student`` or ``position`` column, with a column that the key does not have, or a
 key with a bad number) raises :class:`GradingError` with a message that says what to fix. A
 problem in a row or a cell (an unknown student id or position, a repeated row, a ``φ`` that is
-not the key's, a cell that is not a number) is reported and the rest is graded.
+not the key's, a cell that is not a number) is reported and the rest is graded; so is an answer
+file that cannot be read when other answer files can.
 """
 
 from __future__ import annotations
@@ -122,12 +123,15 @@ def tolerance(column: str, key_value: float, relative: float = DEFAULT_RELATIVE)
     return max(relative * abs(key_value), rule.floor) if rule.relative else rule.floor
 
 
+def _wrap_degrees(angle: float) -> float:
+    """An angle difference (degrees) wrapped to [−180°, 180°)."""
+    return (angle + 180.0) % 360.0 - 180.0
+
+
 def difference(column: str, answer: float, key_value: float) -> float:
     """answer − key; for angles the difference wrapped to [−180°, 180°)."""
     diff = answer - key_value
-    if kind_of(column) == "angle":
-        diff = (diff + 180.0) % 360.0 - 180.0
-    return diff
+    return _wrap_degrees(diff) if kind_of(column) == "angle" else diff
 
 
 def parse_number(text: str, decimal_comma: bool = False) -> float:
@@ -279,12 +283,13 @@ def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None
         raise GradingError(f"answer file {path}: " + "; ".join(parts) + ". The columns must be "
                            f"{','.join([*ID_COLUMNS, PHI, *key.quantities])} (phi_deg may be left out)")
     students = key.students
+    by_id = {s.casefold(): s for s in students}       # "S01" is s01
     for line, row, overflow in rows:
         where = f"{path.name}, line {line}"
         if overflow:
             answers.problems.append(f"{path.name}, " + _overflow(line, len(row), len(header)) + "; row ignored")
             continue
-        student = row["student"].strip()
+        student = by_id.get(row["student"].strip().casefold(), row["student"].strip())
         if student not in students:
             known = f"{students[0]} … {students[-1]}" if len(students) > 2 else ", ".join(students)
             answers.problems.append(f"{where}: unknown student id {student!r} (the key has {known}); row ignored")
@@ -305,7 +310,7 @@ def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None
                 answers.problems.append(f"{where}: φ: {error}; row ignored")
                 continue
             expected = key.phi[student, position]
-            if abs(difference("x.angle_deg", angle, expected)) > PHI_TOLERANCE:
+            if abs(_wrap_degrees(angle - expected)) > PHI_TOLERANCE:
                 answers.problems.append(f"{where}: φ = {angle:g}° but position {position} of {student} is at "
                                         f"φ = {expected:g}°; row ignored")
                 continue
@@ -325,8 +330,9 @@ class Mark:
     """The grade of one answer.
 
     ``status`` is ``right``, ``wrong``, ``missing`` (no row or an empty cell) or ``unreadable``
-    (``note`` says why); ``difference`` is answer − key (wrapped for angles) and ``tolerance`` the
-    accepted |difference|, both in the quantity's unit.
+    (``note`` says why; for a wrong answer it may give a hint, "right but for the sign");
+    ``difference`` is answer − key (wrapped for angles) and ``tolerance`` the accepted
+    |difference|, both in the quantity's unit.
     """
 
     student: str
@@ -377,14 +383,21 @@ class Report:
                 lines.append(f"{student}: no answers ({right} of {asked} right)")
                 continue
             lines.append(f"{student}: {right} of {asked} right ({100 * right / asked:.0f} %)")
+            absent = {p for p in dict.fromkeys(m.position for m in marks)
+                      if all(m.status == "missing" for m in marks if m.position == p)}
             for m in marks:
                 where = f"position {m.position} (φ = {m.phi_deg:g}°) {m.quantity}"
-                if m.status == "wrong":
+                if m.position in absent:
+                    if m.quantity == self.key.quantities[0]:
+                        lines.append(f"  missing    position {m.position} (φ = {m.phi_deg:g}°): all "
+                                     f"{len(self.key.quantities)} answers")
+                elif m.status == "wrong":
                     relative = ""
                     if m.key and TOLERANCES[kind_of(m.quantity)].relative:
-                        relative = f", {100 * m.difference / abs(m.key):+.2g} %"
+                        relative = f", {100 * m.difference / abs(m.key):+.3g} %"
+                    note = f"; {m.note}" if m.note else ""
                     lines.append(f"  wrong      {where}: answer {m.answer:.6g}, key {m.key:.6g} {unit[m.quantity]}, "
-                                 f"off by {m.difference:+.4g}{relative} (tolerance {m.tolerance:.2g})")
+                                 f"off by {m.difference:+.4g}{relative} (tolerance {m.tolerance:.2g}){note}")
                 elif m.status == "missing":
                     lines.append(f"  missing    {where}")
                 elif m.status == "unreadable":
@@ -438,15 +451,36 @@ def grade(key: Key, answers: Answers, relative: float = DEFAULT_RELATIVE) -> Rep
                 continue
             diff = difference(quantity, answer, value)
             status = "right" if abs(diff) <= tol else "wrong"
-            marks.append(Mark(student, position, phi, quantity, value, answer, status, diff, tol))
+            note = ""
+            if status == "wrong" and kind_of(quantity) != "angle" and abs(answer + value) <= tol:
+                note = "right but for the sign"
+            marks.append(Mark(student, position, phi, quantity, value, answer, status, diff, tol, note))
     return Report(key, marks, list(answers.problems), relative)
 
 
 def check_files(key_path: str | pathlib.Path, answer_paths: Sequence[str | pathlib.Path] | Iterable,
                 relative: float = DEFAULT_RELATIVE) -> Report:
-    """Read the key and the answer files and grade them (:class:`GradingError` for a file that cannot be read)."""
+    """Read the key and the answer files and grade them.
+
+    An answer file that cannot be read is reported among the problems (its answers count as
+    missing) and the other files are graded.
+
+    Raises
+    ------
+    GradingError
+        If the key cannot be read, or none of the answer files.
+    """
     key = read_key(key_path)
     answers = Answers()
-    for path in answer_paths:
-        read_answers(path, key, into=answers)
+    failures = []
+    paths = list(answer_paths)
+    for path in paths:
+        try:
+            read_answers(path, key, into=answers)
+        except GradingError as error:
+            failures.append(str(error))
+            answers.problems.append(f"not graded: {error}")
+    if failures and len(failures) == len(paths):
+        raise GradingError(failures[0] if len(failures) == 1 else
+                           "no answer file could be read:\n  " + "\n  ".join(failures))
     return grade(key, answers, relative)

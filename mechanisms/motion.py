@@ -34,6 +34,21 @@ __all__ = [
 ArrayLike = Union[float, complex, np.ndarray]
 
 
+def unit_vector(angle) -> np.ndarray:
+    """``exp(iθ) = cos θ + i sin θ`` (complex), from one cosine and one sine.
+
+    Equal to ``np.exp(1j * angle)`` to the last bit, at less than half its cost: numpy's
+    complex exponential of a purely imaginary argument also evaluates ``exp(0)``.
+    """
+    angle = np.asarray(angle)
+    if angle.dtype != np.float64:
+        return np.exp(1j * angle)
+    out = np.empty(angle.shape, dtype=complex)
+    out.real = np.cos(angle)
+    out.imag = np.sin(angle)
+    return out
+
+
 @dataclass(frozen=True)
 class Motion:
     """A value and its first and second time derivatives over the crank positions.
@@ -118,7 +133,7 @@ class AngleMotion(Motion):
 
     def unit(self) -> np.ndarray:
         """``exp(iθ)``, the unit vector along the link."""
-        return np.exp(1j * self.value)
+        return unit_vector(self.value)
 
 
 class PointMotion(Motion):
@@ -214,10 +229,23 @@ def point_on_link(pole: PointMotion | complex, angle: AngleMotion, along: float,
     -----
     ``r = r_P + (u + iv)·exp(iθ)``; the derivatives are those of :func:`plane_motion`.
     """
-    if not isinstance(pole, Motion):
-        pole = fixed_point(pole, angle.value, angle.order)
-    position = pole.value + complex(along, left) * angle.unit()
-    return plane_motion(pole, angle, position)
+    if isinstance(pole, Motion):
+        position = pole.value + complex(along, left) * angle.unit()
+        return plane_motion(pole, angle, position)
+    # a fixed pole: the arm r − r_P is known, and the pole's zero velocity and acceleration
+    # need not be added (the same values as plane_motion's, without its temporaries)
+    arm = complex(along, left) * angle.unit()
+    position = arm + complex(pole)
+    if angle.order == 0:
+        return PointMotion(position)
+    turn = 1j * angle.omega
+    velocity = turn * arm
+    velocity += 0.0          # as plane_motion's v_P + …: no negative zeros
+    if angle.order == 1:
+        return PointMotion(position, velocity)
+    acceleration = (1j * angle.alpha - angle.omega**2) * arm
+    acceleration += 0.0
+    return PointMotion(position, velocity, acceleration)
 
 
 def lagrange_point(pole: PointMotion | complex, angle: AngleMotion, material: complex,

@@ -35,15 +35,6 @@ _STYLE = {  # kind → (line style, line width)
 }
 
 
-def _pretty(name: str) -> str:
-    """A vector's name as mathtext: ``a^n_BA`` → ``$a^{n}_{BA}$``."""
-    letter, _, rest = name.partition("_")
-    if "^" in letter:
-        letter, sup = letter.split("^")
-        return f"${letter}^{{{sup}}}_{{{rest}}}$"
-    return f"${letter}_{{{rest}}}$"
-
-
 def _arrow(ax, tail: complex, head: complex, colour: str, style: str, width: float, zorder: int = 3) -> None:
     ax.annotate("", xy=(head.real, head.imag), xytext=(tail.real, tail.imag),
                 arrowprops={"arrowstyle": "-|>", "color": colour, "lw": width, "linestyle": style,
@@ -61,7 +52,8 @@ def draw_plan(plan: Plan, ax=None, names: bool = True, images: bool = True, titl
     ax : matplotlib Axes, optional
         Where to draw; a new figure if omitted.
     names : bool
-        Write the names of the relative vectors and components beside them (``v_BA``, ``a^n_BA`` …).
+        Write the names of the relative vectors and components beside them (``v_BA``, ``a^n_BA`` …),
+        except on vectors too short to carry one.
     images : bool
         Shade the image of every link that has three or more points on the plan.
     title : str, optional
@@ -91,20 +83,31 @@ def draw_plan(plan: Plan, ax=None, names: bool = True, images: bool = True, titl
         style, width = _STYLE[vector.kind]
         shade = colour if vector.kind == "absolute" else ROLE_COLOURS[LINK_ROLES.get(vector.link, "coupler")]
         _arrow(ax, tail, head, shade, style, width, 4 if vector.kind == "absolute" else 3)
-        if names and vector.kind != "absolute":
+        if names and vector.kind != "absolute" and abs(head - tail) >= 3.0 * label_offset:
             middle = 0.5 * (tail + head)
             side = 1j * (head - tail) / abs(head - tail) * 0.9 * label_offset
-            ax.text((middle + side).real, (middle + side).imag, _pretty(vector.name), fontsize=9, color=shade,
+            ax.text((middle + side).real, (middle + side).imag, f"${vector.latex}$", fontsize=9, color=shade,
                     ha="center", va="center", zorder=5)
-    # the vertices and their letters: away from the pole (or from the plan's centre, for the pole)
-    centre = np.mean(list(drawn.values()))
+    # the vertices and their letters, away from the pole (the pole's away from the plan's centre);
+    # vertices closer than the letters' size share one label, "a, b"
+    groups: list[list[str]] = []
     for label, point in drawn.items():
-        away = point - centre if label == plan.pole else point
+        for group in groups:
+            if abs(drawn[group[0]] - point) < 0.8 * label_offset:
+                group.append(label)
+                break
+        else:
+            groups.append([label])
+    centre = np.mean(list(drawn.values()))
+    for group in groups:
+        point = np.mean([drawn[label] for label in group])
+        away = point - centre if plan.pole in group else point
         away = away / abs(away) if abs(away) > 1e-9 else 1j
-        ax.plot(point.real, point.imag, "o", ms=3.5, color="black", zorder=6)
-        text = (point + label_offset * away)
-        ax.text(text.real, text.imag, label, fontsize=11, ha="center", va="center", zorder=6,
-                style="italic" if label != plan.pole else "normal")
+        for label in group:
+            ax.plot(drawn[label].real, drawn[label].imag, "o", ms=3.5, color="black", zorder=6)
+        text = point + (label_offset + 1.2 * (len(group) - 1)) * away
+        ax.text(text.real, text.imag, ", ".join(group), fontsize=11, ha="center", va="center", zorder=6,
+                style="normal" if plan.pole in group else "italic")
     values = np.array(list(drawn.values()))
     span = max(np.ptp(values.real), np.ptp(values.imag), 10.0)
     margin = 0.12 * span + label_offset
@@ -113,7 +116,8 @@ def draw_plan(plan: Plan, ax=None, names: bool = True, images: bool = True, titl
     ax.set_aspect("equal")
     ax.set_xlabel("mm of the drawing")
     ax.set_ylabel("mm of the drawing")
-    ax.text(0.98, 0.02, f"{plan.symbol} = {plan.scale:g} ({plan.unit})/mm", transform=ax.transAxes, ha="right",
+    symbol = r"$\mu_v$" if plan.quantity == "velocity" else r"$\mu_a$"
+    ax.text(0.98, 0.02, f"{symbol} = {plan.scale:g} ({plan.unit})/mm", transform=ax.transAxes, ha="right",
             va="bottom", fontsize=9, bbox={"facecolor": "white", "edgecolor": "0.7", "boxstyle": "round"})
     what = "velocity plan" if plan.quantity == "velocity" else "acceleration plan"
     ax.set_title(title if title is not None else f"{what}, φ = {np.degrees(plan.phi) % 360:.4g}°")
@@ -193,8 +197,9 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
         joint = any(abs(point - p) < 1e-12 * span for p in centres.positions.values())
         if not joint:
             ax.plot(point.real, point.imag, marker="*", ms=12, color=ROLE_COLOURS["point"], mec="black", zorder=6)
-        ax.annotate(f"$P_{{{i}{j}}}$", (point.real, point.imag), xytext=(6, -14), textcoords="offset points",
-                    fontsize=10, color="0.2", zorder=6)
+        ax.annotate(f"$P_{{{i}{j}}}$", (point.real, point.imag), xytext=(6, -14) if joint else (-10, 9),
+                    textcoords="offset points", fontsize=10, color="0.2", zorder=6,
+                    ha="left" if joint else "right")
     for (i, j), direction in centres.infinite.items():
         # from the joint of the slider, an arrow towards the centre at infinity
         start = centres.positions.get("B", 0j)
@@ -210,7 +215,7 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
 
 
 def draw_centre_velocities(ax, centre: complex, positions: Mapping[str, complex], velocities: Mapping[str, complex],
-                           scale: float, label: str = "P"):
+                           scale: float):
     """Velocities of a link's points drawn at the points, with the rays from the link's instant centre.
 
     Parameters
@@ -223,8 +228,10 @@ def draw_centre_velocities(ax, centre: complex, positions: Mapping[str, complex]
         Name → position (m) and velocity (m/s) of each point.
     scale : float
         m of the drawing per m/s; state it in the caption.
-    label : str
-        Not drawn; kept for the caller's legend.
+
+    Returns
+    -------
+    matplotlib Axes
     """
     for name, point in positions.items():
         ax.plot([centre.real, point.real], [centre.imag, point.imag], color="0.55", lw=0.9, ls="--", zorder=1)

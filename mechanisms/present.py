@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Sequence
 
-__all__ = ["MarkdownTable", "markdown_table"]
+__all__ = ["MarkdownTable", "markdown_table", "difference"]
 
 
 class MarkdownTable:
@@ -51,3 +51,14 @@ def markdown_table(headers: Sequence[str], rows: Sequence[Sequence], formats: st
     for row in rows:
         lines.append("| " + " | ".join(_cell(v, f) for v, f in zip(row, formats)) + " |")
     return MarkdownTable("\n".join(lines))
+
+
+def difference(value: float, floor: float = 1e-12, unit: str = "") -> str:
+    """A checked difference for people: ``"3.4e-06 m"``, or ``"< 1e-12 m"`` at round-off.
+
+    The digits of a round-off difference change with the order of floating-point operations;
+    printing them would make the book's stored outputs fragile and suggest a precision that is
+    not there. Below ``floor`` (relative to values of order 1) the difference is printed as a bound.
+    """
+    text = f"< {floor:.0e}" if abs(value) < floor else f"{value:.1e}"
+    return f"{text} {unit}".rstrip()

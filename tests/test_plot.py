@@ -82,3 +82,9 @@ def test_annotate_dimension_writes_its_label():
     plot.annotate_dimension(ax, 0j, 0.2 + 0j, "$s$", both=False)
     assert [t.get_text() for t in ax.texts if t.get_text()] == ["$s$"]
     plt.close("all")
+
+
+def test_difference_prints_round_off_as_a_bound():
+    assert mech.difference(3.4e-6, unit="m") == "3.4e-06 m"
+    assert mech.difference(2.2e-16, unit="m") == "< 1e-12 m"
+    assert mech.difference(-5e-13, floor=1e-14) == "-5.0e-13"

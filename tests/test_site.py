@@ -162,8 +162,9 @@ def test_the_student_edition_has_no_solutions():
     # the sources (which hold the solutions) can neither be downloaded nor found in the site
     assert not (site / "_sources").exists(), "the student edition holds the sources (_sources) with the solutions"
     for page in site_pages(site):
-        assert ".ipynb" not in (site / page).read_text(encoding="utf8").replace(".ipynb_checkpoints", ""), \
-            f"{page} links a notebook (the download button)"
+        html = (site / page).read_text(encoding="utf8")
+        assert "_sources/" not in html and "btn-download-source-button" not in html, \
+            f"{page} offers its source for download"
 
 
 @pytest.mark.parametrize(("edition", "page_path"), edition_pages())

@@ -174,8 +174,9 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
     every stage evaluates J_red, J_red' and M_c exactly (:func:`reduced_model`). For a smooth
     right-hand side the local error is O(h⁵) and the global error O(h⁴): halving the step
     divides the error by about 16. The tests measure it as the drift of the energy of a free
-    run (no drive, no load), which is conserved by the exact motion: below 1e-7 of the energy
-    after 5 revolutions at 200 steps per revolution, and falling about 16-fold when h halves.
+    run (no drive, no load), which the exact motion conserves: for the crank-slider of
+    chapter 6, below 1e-7 of the energy after 5 revolutions at 200 steps per revolution, and
+    about 16 times less when h halves.
     A load with a jump in its reduced torque lowers the order near the jump; choose h small
     against the angle over which the load changes.
     """
@@ -262,7 +263,9 @@ def energy_swing(phi, torque) -> float:
     phi : array_like
         Increasing crank angles spanning one period of the machine's cycle, ends included (rad).
     torque : array_like
-        The torque that accelerates the crank, M_d − M_c, at those angles (N·m).
+        The torque that changes the kinetic energy of the constant part of the inertia (N·m):
+        M_d − M_c, and, for a mechanism whose J_red varies, minus ½ J_red' ω_m², the inertia
+        torque of the variable part at the mean speed ω_m (chapter 6).
 
     Returns
     -------

@@ -102,7 +102,7 @@ class _System:
         row = self._moment_row(body)
         if row is not None:
             arm = point - self.centres[body]
-            self.matrix[:, row, column] += -sign * arm.imag * 1.001   # moment of Fx: −Δy Fx
+            self.matrix[:, row, column] += -sign * arm.imag   # moment of Fx: −Δy Fx
             self.matrix[:, row, column + 1] += sign * arm.real  # moment of Fy: Δx Fy
 
     def unknown_normal(self, body: str, column: int, direction: complex) -> None:

@@ -202,6 +202,15 @@ class PlanVector:
     link: str
     value: complex
 
+    @property
+    def latex(self) -> str:
+        """The name in LaTeX (and matplotlib mathtext): ``a^n_BA`` → ``a^{n}_{BA}``."""
+        letter, _, subscript = self.name.partition("_")
+        if "^" in letter:
+            letter, superscript = letter.split("^")
+            return f"{letter}^{{{superscript}}}_{{{subscript}}}"
+        return f"{letter}_{{{subscript}}}"
+
 
 @dataclass(frozen=True)
 class Plan:
@@ -320,16 +329,19 @@ class Plan:
     def similarity(self, link: str) -> float:
         """How far the image of a link is from similar to the link (0 for an exact image).
 
-        The ratio ``(x − a)/(X − A)`` of every image vector to the link vector it images is the
-        same complex number for a rigid link; the result is the largest relative difference of
-        those ratios from the first one.
+        For a rigid link every image vector is the link vector it images times one complex number ρ,
+        ``x − a = ρ(X − A)``, with ρ = (b − a)/(B − A) from the link's two joints. The result is the
+        largest ``|x − a − ρ(X − A)|`` over the link's points, relative to ``|ρ|`` times the link's size.
         """
         names = self.images[link]
-        first, first_label = self.positions[names[0]], self.points[names[0]]
-        ratios = [(self.vertices[self.points[n]] - self.vertices[first_label]) / (self.positions[n] - first)
-                  for n in names[1:]]
-        reference = ratios[0]
-        return max(abs(r - reference) for r in ratios) / abs(reference)
+        first, second = names[0], names[1]
+        at = {n: self.vertices[self.points[n]] for n in names}
+        rho = (at[second] - at[first]) / (self.positions[second] - self.positions[first])
+        size = max(abs(self.positions[n] - self.positions[first]) for n in names)
+        if rho == 0:
+            return max(abs(at[n] - at[first]) for n in names)
+        return max(abs(at[n] - at[first] - rho * (self.positions[n] - self.positions[first])) for n in names) / (
+            abs(rho) * size)
 
 
 class VelocityPlan(Plan):
@@ -397,7 +409,7 @@ def _check_extra(extra, allowed: Sequence[str]) -> None:
                                         + ", ".join(allowed))
 
 
-def _crank(b: _Builder, where, omega1: float, alpha1: float, velocity: Plan | None) -> None:
+def _crank(b: _Builder, where, omega1: float, alpha1: float) -> None:
     """The crank pin A: ``v_A = iω₁(A − O)``; ``a_A = a^n_A + a^t_A`` with ``a^n_A = −ω₁²(A − O)``."""
     arm = where["A"] - where["O"]
     b.vertex(b.pole, 0j, "O")
@@ -533,10 +545,14 @@ def _add_images(b: _Builder, where, link_points: Mapping[str, tuple[str, str]],
         b.images[link] = tuple(names)
 
 
+def _require_index(solution: Solution, index: int) -> None:
+    if not -len(solution) <= index < len(solution):
+        raise InvalidParameterError("index", index, f"a position of the solution, 0 … {len(solution) - 1}")
+
+
 def _build(mechanism: Mechanism, solution: Solution, index: int, quantity: str, velocity: Plan | None,
            points: Mapping[str, tuple[str, float, float]] | None, scale: float | None) -> Plan:
-    if not 0 <= index < len(solution) and not -len(solution) <= index < 0:
-        raise InvalidParameterError("index", index, f"a position of the solution, 0 … {len(solution) - 1}")
+    _require_index(solution, index)
     needed = 1 if quantity == "velocity" else 2
     if solution.order < needed:
         raise InvalidParameterError("solution", f"order={solution.order}", f"a solution of order ≥ {needed} "
@@ -551,13 +567,13 @@ def _build(mechanism: Mechanism, solution: Solution, index: int, quantity: str, 
     if isinstance(mechanism, CrankSlider):
         _check_extra(points, ("crank", "coupler"))
         where = _positions(mechanism, solution, index, points)
-        _crank(b, where, omega1, alpha1, velocity)
+        _crank(b, where, omega1, alpha1)
         _hinge_on_guide(b, where, "A", "a" + prime, "B", "b" + prime, "coupler", "slider", 1.0 + 0j, velocity, 2)
         links = {"crank": ("O", "A"), "coupler": ("A", "B")}
     elif isinstance(mechanism, FourBar):
         _check_extra(points, ("crank", "coupler", "rocker"))
         where = _positions(mechanism, solution, index, points)
-        _crank(b, where, omega1, alpha1, velocity)
+        _crank(b, where, omega1, alpha1)
         b.vertex(b.pole, 0j, "C")
         _two_hinges(b, where, "A", "a" + prime, "C", b.pole, "B", "b" + prime, "coupler", "rocker", velocity)
         links = {"crank": ("O", "A"), "coupler": ("A", "B"), "rocker": ("C", "B")}
@@ -566,7 +582,7 @@ def _build(mechanism: Mechanism, solution: Solution, index: int, quantity: str, 
         _check_extra(points, ("crank", "lever", "rod") if shaper else ("crank", "lever"))
         where = _positions(mechanism, solution, index, points)
         where["A3"] = where["A"]
-        _crank(b, where, omega1, alpha1, velocity)
+        _crank(b, where, omega1, alpha1)
         _block_on_lever(b, where, velocity)
         lever_end = image(0j, b.vertices["a3" + prime], where["C"], where["A3"], where["B"])
         b.vertex("b" + prime, lever_end, "B")
@@ -650,8 +666,13 @@ def acceleration_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
     ``a_A3 = a_A2 + a^k_A3A2 + a^r_A3A2 = a^n_A3C + a^t_A3C``, ``a^k = 2ω₃ v_A3A2`` turned by 90°
     in the sense of ω₃, ``a^r ∥ CA``. ε of a link = a^t/(length), its sense from the direction.
     """
+    _require_index(solution, index)
     if velocity is None:
         velocity = velocity_plan(mechanism, solution, index, points)
+    elif not math.isclose(velocity.phi, float(solution.phi[index]), abs_tol=1e-12):
+        raise InvalidParameterError("velocity", f"a plan at φ = {math.degrees(velocity.phi):g}°",
+                                    f"the velocity plan of the same position, φ = "
+                                    f"{math.degrees(float(solution.phi[index])):g}°")
     return _build(mechanism, solution, index, "acceleration", velocity, points, scale)
 
 
@@ -767,12 +788,17 @@ def instant_centres(mechanism: Mechanism, solution: Solution, index: int = 0) ->
 
 
 def kennedy_deviation(centres: InstantCentres) -> float:
-    """The largest departure from Kennedy's theorem over all triples of links: 0 if every triple is collinear.
+    """The largest departure from Kennedy's theorem over all triples of links, relative to the mechanism's size.
 
-    For three finite centres it is the sine of the angle at the first between the other two (0 on one
-    line); with one centre at infinity, the sine between the line of the other two and its direction.
-    Triples with two centres at infinity are collinear (on the line at infinity).
+    For three finite centres: the distance of one of them from the line through the other two, taking
+    the line through the two farthest apart. With one centre at infinity: how far the line through the
+    other two is from its direction, i.e. the component of their chord across that direction. Both
+    are divided by the size of the mechanism (the largest distance between two joints), so the result
+    is 0 when every triple is collinear and of the order of round-off for exact centres. Triples with
+    two centres at infinity lie on the line at infinity and count as collinear.
     """
+    joints = list(centres.positions.values())
+    size = max([abs(p - q) for p in joints for q in joints] + [1e-300])
     worst = 0.0
     numbers = sorted(centres.links.values())
     for i, j, k in itertools.combinations(numbers, 3):
@@ -783,15 +809,16 @@ def kennedy_deviation(centres: InstantCentres) -> float:
             continue
         if far:
             direction = centres.infinite[far[0]]
-            chord = near[1] - near[0]
-            if abs(chord) == 0:
-                continue
-            worst = max(worst, abs(_cross(chord, direction)) / (abs(chord) * abs(direction)))
+            offset = abs(_cross(near[1] - near[0], direction)) / abs(direction)
         else:
-            u, v = near[1] - near[0], near[2] - near[0]
-            if abs(u) == 0 or abs(v) == 0:
+            # the longest side is the base; the third point's distance from it is the departure
+            sides = sorted(((abs(near[b] - near[a]), a, b) for a, b in ((0, 1), (1, 2), (0, 2))), reverse=True)
+            length, a, b = sides[0]
+            if length == 0.0:
                 continue
-            worst = max(worst, abs(_cross(u, v)) / (abs(u) * abs(v)))
+            c = 3 - a - b
+            offset = abs(_cross(near[b] - near[a], near[c] - near[a])) / length
+        worst = max(worst, offset / size)
     return worst
 
 

@@ -73,6 +73,25 @@ def _solve_rates(arm_p: np.ndarray, arm_q: np.ndarray, rhs: np.ndarray, det: np.
     return _dot(arm_q, rhs) / det, _dot(arm_p, rhs) / det
 
 
+def _assembly_failure(distance, shape, total: float, difference: float, tolerance: float, angles) -> None:
+    """Raise the :class:`AssemblyError` of :func:`hinge`, naming the positions that fail."""
+    where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), shape)
+    coincident = distance <= tolerance * 1e-3
+    if coincident.any():
+        raise AssemblyError("the two known joints coincide, so the hinge is indeterminate (it can be "
+                            "anywhere on a circle)", None if where is None else where[coincident])
+    far = total - distance < -tolerance
+    near = distance - difference < -tolerance
+    reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "
+              f"lengths {total:g} m)" if far.any() else
+              "one circle lies inside the other (joints closer than the difference of the link "
+              f"lengths {difference:g} m)")
+    if far.any() and near.any():
+        reason += (" and, elsewhere, one circle lies inside the other (joints closer than "
+                   f"{difference:g} m)")
+    raise AssemblyError(reason, None if where is None else where[far | near])
+
+
 def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int = 1,
           angles=None) -> Hinge:
     """Solve two links meeting at a hinge: J with |J − p| = L_p and |J − q| = L_q.
@@ -121,59 +140,51 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     if branch_array.ndim == 0:
         side = float(require_branch(branch))
     else:
-        if not np.all(np.isin(branch_array, (1, -1))):
-            require_branch(branch_array[~np.isin(branch_array, (1, -1))].ravel()[0].item())
+        valid = (branch_array == 1) | (branch_array == -1)
+        if not valid.all():
+            require_branch(branch_array[~valid].ravel()[0].item())
         side = branch_array.astype(float)
     order = min(p.order, q.order)
     d = q.value - p.value
     distance = np.abs(d)
     total = length_p + length_q
     difference = abs(length_p - length_q)
-    slack_far = total - distance          # ≥ 0: the links reach across
-    slack_near = distance - difference    # ≥ 0: neither circle inside the other
     tolerance = ASSEMBLY_TOLERANCE * total
-    far = slack_far < -tolerance
-    near = slack_near < -tolerance
-    coincident = distance <= tolerance * 1e-3
-    if coincident.any():
-        where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), d.shape)
-        raise AssemblyError("the two known joints coincide, so the hinge is indeterminate (it can be "
-                            "anywhere on a circle)", None if where is None else where[coincident])
-    if far.any() or near.any():
-        where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), d.shape)
-        reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "
-                  f"lengths {total:g} m)" if far.any() else
-                  "one circle lies inside the other (joints closer than the difference of the link "
-                  f"lengths {difference:g} m)")
-        if far.any() and near.any():
-            reason += (" and, elsewhere, one circle lies inside the other (joints closer than "
-                       f"{difference:g} m)")
-        raise AssemblyError(reason, None if where is None else where[far | near])
-    slack_far = np.maximum(slack_far, 0.0)    # the clamp is checked just above
-    slack_near = np.maximum(slack_near, 0.0)
-    height = np.sqrt((total + distance) * slack_far * slack_near * (distance + difference)) / (2.0 * distance)
-    foot = 0.5 * (distance + (length_p - length_q) * (length_p + length_q) / distance)
-    direction = d / distance
-    arm_p = (foot + 1j * side * height) * direction      # r_p = J − p
+    # the extremes decide whether any position fails; the masks are made only then
+    shortest, longest = (distance.min(), distance.max()) if distance.size else (1.0, 0.0)
+    if shortest <= tolerance * 1e-3 or shortest - difference < -tolerance or total - longest < -tolerance:
+        _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
+    slack_far = np.maximum(total - distance, 0.0)       # ≥ 0: the links reach across (checked above)
+    slack_near = np.maximum(distance - difference, 0.0)  # ≥ 0: neither circle inside the other
+    # Heron's product, the two small factors near a limit computed directly: h·D
+    height_distance = 0.5 * np.sqrt((total + distance) * slack_far * slack_near * (distance + difference))
+    inverse = 1.0 / distance
+    foot = 0.5 * (distance + (length_p - length_q) * (length_p + length_q) * inverse)   # m
+    # r_p = J − p = (m + i·branch·h)·d/D, with h = (h·D)/D
+    arm_p = d * (inverse * (foot + 1j * (side * height_distance * inverse)))
     point = p.value + arm_p
     arm_q = point - q.value                              # r_q = J − q
     theta_p, theta_q = np.angle(arm_p), np.angle(arm_q)
     # |sin| of the angle between the links is h·D/(L_p·L_q); the mask uses that ratio
-    singular = height * distance <= SINGULAR_TOLERANCE * length_p * length_q
-    singular = np.broadcast_to(singular, np.shape(point)).copy()
+    singular = height_distance <= SINGULAR_TOLERANCE * length_p * length_q
+    if singular.shape != np.shape(point):
+        singular = np.broadcast_to(singular, np.shape(point)).copy()
     if order == 0:
         return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
     det = _cross(arm_p, arm_q)
+    any_singular = singular.any()
     with np.errstate(divide="ignore", invalid="ignore"):
         omega_p, omega_q = _solve_rates(arm_p, arm_q, q.velocity - p.velocity, det)
-        omega_p = np.where(singular, np.nan, omega_p)
-        omega_q = np.where(singular, np.nan, omega_q)
+        if any_singular:
+            omega_p = np.where(singular, np.nan, omega_p)
+            omega_q = np.where(singular, np.nan, omega_q)
         velocity = p.velocity + 1j * omega_p * arm_p
         if order == 1:
             return Hinge(PointMotion(point, velocity), AngleMotion(theta_p, omega_p),
                          AngleMotion(theta_q, omega_q), singular)
-        rhs = q.acceleration - p.acceleration + omega_p**2 * arm_p - omega_q**2 * arm_q
+        square_p, square_q = omega_p * omega_p, omega_q * omega_q
+        rhs = q.acceleration - p.acceleration + square_p * arm_p - square_q * arm_q
         alpha_p, alpha_q = _solve_rates(arm_p, arm_q, rhs, det)
-        acceleration = p.acceleration + (1j * alpha_p - omega_p**2) * arm_p
+        acceleration = p.acceleration + (1j * alpha_p - square_p) * arm_p
     return Hinge(PointMotion(point, velocity, acceleration), AngleMotion(theta_p, omega_p, alpha_p),
                  AngleMotion(theta_q, omega_q, alpha_q), singular)

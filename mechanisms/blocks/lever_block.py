@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidParameterError, require_length
-from ..motion import AngleMotion, Motion, PointMotion, polar
+from ..motion import AngleMotion, Motion, PointMotion, polar, unit_vector
 
 __all__ = ["LeverBlock", "lever_block", "lever_through_pivot"]
 
@@ -74,7 +74,7 @@ class LeverBlock:
 def _coriolis(angle: AngleMotion, distance: Motion) -> np.ndarray | None:
     if angle.order < 1:
         return None
-    return 2.0 * angle.omega * distance.velocity * 1j * np.exp(1j * angle.value)
+    return (2.0 * angle.omega * distance.velocity) * (1j * unit_vector(angle.value))
 
 
 def lever_block(pin: PointMotion, pivot: PointMotion | complex = 0j) -> LeverBlock:

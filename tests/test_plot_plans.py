@@ -1,0 +1,125 @@
+"""Tests of mechanisms.plot_plans: plans drawn to scale and lettered, instant centres drawn."""
+
+import matplotlib.colors as mcolors
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+import mechanisms as mech
+from mechanisms import plot, plot_plans
+from mechanisms.analysis import plans
+
+EXAMPLE = mech.CrankSlider(crank=0.08, rod=0.3)          # example 5.2 of the textbook page
+
+
+@pytest.fixture(autouse=True)
+def close_figures():
+    yield
+    plt.close("all")
+
+
+def _example_plans():
+    sol = EXAMPLE.solve(np.radians([30.0]), omega=215.0)
+    v = plans.velocity_plan(EXAMPLE, sol, points={"S2": ("coupler", 0.09, 0.0)})
+    return sol, v, plans.acceleration_plan(EXAMPLE, sol, points={"S2": ("coupler", 0.09, 0.0)}, velocity=v)
+
+
+def _arrows(ax):
+    return [t for t in ax.texts if getattr(t, "arrow_patch", None) is not None]
+
+
+def test_velocity_plan_is_drawn_to_scale_with_its_letters_and_scale():
+    _, v, _ = _example_plans()
+    ax = plot_plans.draw_plan(v)
+    texts = [t.get_text() for t in ax.texts]
+    for letter in ("p", "a", "b", "s2"):
+        assert letter in texts
+    assert any("0.2 (m/s)/mm" in t for t in texts)          # μ_v = 0.2 (m/s)/mm, the course scale for 17.2 m/s
+    arrows = _arrows(ax)
+    assert len(arrows) == 4                                 # v_A, v_BA, v_B, v_S2
+    # each arrow ends at its vertex divided by the scale: p → b is v_B = −10.604 m/s → −53.02 mm (hand value)
+    heads = {tuple(np.round(a.xy, 6)) for a in arrows}
+    assert (round(-10.60397794444199 / 0.2, 6), 0.0) in heads
+    absolute = [a for a in arrows if a.xyann == (0.0, 0.0)]
+    assert len(absolute) == 3
+    assert all(mcolors.same_color(a.arrow_patch.get_edgecolor(), plot.VELOCITY_COLOUR) for a in absolute)
+    relative = [a for a in arrows if a.xyann != (0.0, 0.0)]
+    assert mcolors.same_color(relative[0].arrow_patch.get_edgecolor(), plot.ROLE_COLOURS["coupler"])
+    assert ax.get_aspect() == 1.0
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    for label in v.vertices:
+        p = v.drawn(label)
+        assert x0 < p.real < x1 and y0 < p.imag < y1
+    assert ax.get_xlabel() == "mm of the drawing"
+
+
+def test_acceleration_plan_draws_normal_components_dashed_and_uses_its_colour():
+    _, _, a = _example_plans()
+    ax = plot_plans.draw_plan(a, names=True)
+    texts = [t.get_text() for t in ax.texts]
+    for letter in ("π", "a′", "n2", "b′", "s2′"):
+        assert letter in texts
+    assert "$a^{n}_{BA}$" in texts and "$a^{t}_{BA}$" in texts
+    assert any("50 (m/s²)/mm" in t for t in texts)
+    arrows = _arrows(ax)
+    normal = [x for x in arrows if tuple(np.round(x.xy, 9)) == tuple(np.round((a.drawn("n2").real,
+                                                                                a.drawn("n2").imag), 9))]
+    assert normal and normal[0].arrow_patch.get_linestyle() != "solid"
+    absolute = [x for x in arrows if x.xyann == (0.0, 0.0)]
+    assert all(mcolors.same_color(x.arrow_patch.get_edgecolor(), plot.ACCELERATION_COLOUR) for x in absolute)
+
+
+def test_slotted_lever_plan_draws_the_coriolis_component():
+    m = mech.SlottedLever(crank=0.1, pivot=(0.0, 0.25))
+    sol = m.solve(np.radians([64.0]), omega=10.0)
+    ax = plot_plans.draw_plan(plans.acceleration_plan(m, sol))
+    texts = [t.get_text() for t in ax.texts]
+    assert "$a^{k}_{A3A2}$" in texts and "k" in texts and "a3′" in texts
+
+
+def test_draw_plans_puts_the_mechanism_above_its_two_plans():
+    sol, v, a = _example_plans()
+    fig, axes = plot_plans.draw_plans(EXAMPLE, sol, v, a)
+    assert len(axes) == 3
+    assert axes[1].get_title() == "velocity plan" and axes[2].get_title() == "acceleration plan"
+    assert "S2" in [t.get_text() for t in axes[0].texts]
+    fig, axes = plot_plans.draw_plans(EXAMPLE, sol, v)
+    assert len(axes) == 2
+
+
+def test_instant_centres_of_a_four_bar_are_marked_and_labelled():
+    m = mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05))
+    sol = m.solve(np.radians([60.0]), omega=10.0, order=0)
+    centres = plans.instant_centres(m, sol)
+    ax = plot_plans.draw_instant_centres(m, sol, centres)
+    texts = [t.get_text() for t in ax.texts]
+    for name in ("01", "12", "23", "03", "02", "13"):
+        assert f"$P_{{{name}}}$" in texts
+    stars = [ln for ln in ax.lines if ln.get_marker() == "*"]
+    assert len(stars) == 2                                  # P02 and P13 are not joints
+    centre = centres[(0, 2)]
+    assert any(np.allclose([ln.get_xdata()[0], ln.get_ydata()[0]], [centre.real, centre.imag]) for ln in stars)
+    x0, x1 = ax.get_xlim()
+    assert x0 < centres[(1, 3)].real < x1
+
+
+def test_a_centre_at_infinity_is_drawn_as_an_arrow():
+    sol = EXAMPLE.solve(np.radians([30.0]), omega=215.0, order=0)
+    ax = plot_plans.draw_instant_centres(EXAMPLE, sol, plans.instant_centres(EXAMPLE, sol))
+    assert "$P_{03}$ at ∞" in [t.get_text() for t in ax.texts]
+
+
+def test_velocities_from_the_centre_are_drawn_at_the_points():
+    m = mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05))
+    sol = m.solve(np.radians([60.0]), omega=10.0)
+    centres = plans.instant_centres(m, sol)
+    where = {n: sol.point(n).value[0] for n in "AB"}
+    _, velocities = plans.velocities_from_centre(centres[(0, 2)], where["A"], sol.point("A").velocity[0], where)
+    _, ax = plt.subplots()
+    plot_plans.draw_centre_velocities(ax, centres[(0, 2)], where, velocities, scale=0.1)
+    arrows = _arrows(ax)
+    assert len(arrows) == 2
+    tip = where["B"] + 0.1 * velocities["B"]
+    assert any(np.allclose(a.xy, (tip.real, tip.imag)) for a in arrows)
+    assert all(mcolors.same_color(a.arrow_patch.get_edgecolor(), plot.VELOCITY_COLOUR) for a in arrows)
