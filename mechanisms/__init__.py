@@ -28,7 +28,7 @@ from .slotted import RockerInBlock, Shaper, SliderOnCoupler, SlottedLever, Slott
 # ---------------------------------------------------------------------------------------
 
 from . import verify  # noqa: E402  (layer 5, after the mechanisms it checks)
-from . import plot, present  # noqa: E402  (layer 6)
+from . import plot, plot_plans, present  # noqa: E402  (layer 6)
 from .present import difference, markdown_table  # noqa: E402
 
 __version__ = "0.1.0"

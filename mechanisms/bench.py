@@ -47,6 +47,7 @@ __all__ = [
     "benchmark_mechanisms",
     "reference",
     "coordinate_errors",
+    "jacobian_condition",
     "output_bytes",
     "best_time",
     "run",
@@ -152,6 +153,36 @@ def reference(mechanism: Mechanism, phi, omega: float = OMEGA, alpha: float = 0.
     path = mechanism.constraints([Jet(v, vt) for v, vt in zip(q, q_t)], Jet(phi_ld, w, e))
     q_tt = _solve_two(jac, [-r for r in _derivative(path, phi.shape, "d2")])
     return np.array(q), np.array(q_t), np.array(q_tt)
+
+
+def jacobian_condition(mechanism: Mechanism, phi) -> np.ndarray:
+    """The condition number of the constraint Jacobian Φ_q at the closed-form positions.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with two unknown coordinates.
+    phi : array_like
+        Crank angles φ (rad).
+
+    Returns
+    -------
+    ndarray
+        ``cond₂(Φ_q) = σ_max/σ_min`` at each position: how much a relative error of the
+        constraint residual can grow in the coordinates; ``inf`` where Φ_q is singular (dead
+        centres, change points). It depends on the units of the coordinates when they mix angles
+        and lengths (chapter 8).
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeadCentreWarning)
+        solution = mechanism.solve(phi, order=0)
+    q = [np.asarray(c.value, dtype=float) for c in mechanism.coordinates(solution)]
+    jac, _ = _jacobian(mechanism.constraints, q, phi)
+    matrix = np.stack([np.stack(jac[0], axis=-1), np.stack(jac[1], axis=-1)], axis=-2)
+    singular_values = np.linalg.svd(matrix, compute_uv=False)
+    with np.errstate(divide="ignore"):
+        return singular_values[..., 0] / singular_values[..., -1]
 
 
 def _wrapped(difference: np.ndarray, angle: bool) -> np.ndarray:

@@ -153,7 +153,7 @@ def nice_scale(largest: float, length_mm: float = 100.0) -> float:
     Parameters
     ----------
     largest : float
-        The longest vector of the plan (m/s or m/s²), > 0.
+        The longest vector of the plan, or the farthest vertex from the pole (m/s or m/s²), > 0.
     length_mm : float
         The longest line the drawing may have (mm).
 
@@ -617,8 +617,8 @@ def velocity_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
         Further points of links by name: ``{"S2": ("coupler", u, v)}``, u along the link from its
         first joint and v to its left (m), found on the plan by their images.
     scale : float, optional
-        μ_v in (m/s)/mm; by default the smallest course scale (1, 2, 2.5, 4, 5 × 10ᵏ) that draws
-        the longest vector at most 100 mm long.
+        μ_v in (m/s)/mm; by default the smallest course scale (1, 2, 2.5, 4, 5 × 10ᵏ) that keeps
+        every vertex of the plan within 100 mm of the pole.
 
     Returns
     -------
@@ -701,11 +701,16 @@ class InstantCentres:
     positions: dict[str, complex]
 
     def __getitem__(self, pair: tuple[int, int]) -> complex:
-        """The centre P_ij as a point; ``complex(inf)`` with the direction's phase if it is at infinity."""
+        """The centre P_ij as a point; for a centre at infinity, infinite components along its direction."""
         i, j = sorted(pair)
         if (i, j) in self.finite:
             return self.finite[(i, j)]
-        return complex(math.inf, 0) if (i, j) not in self.infinite else self.infinite[(i, j)] * math.inf
+        if (i, j) not in self.infinite:
+            raise KeyError(f"no instant centre P{i}{j}; the links are numbered "
+                           + ", ".join(f"{name} {n}" for name, n in self.links.items()))
+        d = self.infinite[(i, j)]
+        far = lambda part: math.copysign(math.inf, part) if abs(part) > 1e-12 else 0.0  # noqa: E731
+        return complex(far(d.real), far(d.imag))
 
     def is_finite(self, i: int, j: int) -> bool:
         """True if P_ij is a point of the plane, False if it lies at infinity."""

@@ -125,8 +125,9 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     With ``d = q − p``, ``D = |d|``, J is found in the frame of the line p → q:
     ``J = p + (m + i·branch·h)·d/D`` with the foot of the perpendicular
     ``m = (D² + L_p² − L_q²)/(2D)`` and the height
-    ``h = √((L_p + L_q + D)(L_p + L_q − D)(D − |L_p − L_q|)(D + |L_p − L_q|))/(2D)`` (Heron), a
-    product in which the two small factors near a limit are computed directly; no ``arccos``.
+    ``h = √((L_p + L_q + D)(L_p + L_q − D))·√((D − |L_p − L_q|)(D + |L_p − L_q|))/(2D)`` (Heron), a
+    product in which the two small factors near a limit are computed directly, and whose two roots
+    keep it free of overflow for any lengths between 1e-150 m and 1e150 m; no ``arccos``.
 
     Velocities: differentiating ``p + r_p = q + r_q`` (r_p = J − p, r_q = J − q) in Euler form,
     ``iω_p r_p − iω_q r_q = v_q − v_p``; accelerations:
@@ -156,8 +157,9 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
         _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
     slack_far = np.maximum(total - distance, 0.0)       # ≥ 0: the links reach across (checked above)
     slack_near = np.maximum(distance - difference, 0.0)  # ≥ 0: neither circle inside the other
-    # Heron's product, the two small factors near a limit computed directly: h·D
-    height_distance = 0.5 * np.sqrt((total + distance) * slack_far * slack_near * (distance + difference))
+    # Heron's product, the two small factors near a limit computed directly: h·D. Two square roots
+    # of products of two lengths each keep it in range for lengths from 1e-150 m to 1e150 m.
+    height_distance = 0.5 * np.sqrt((total + distance) * slack_far) * np.sqrt(slack_near * (distance + difference))
     inverse = 1.0 / distance
     foot = 0.5 * (distance + (length_p - length_q) * (length_p + length_q) * inverse)   # m
     # r_p = J − p = (m + i·branch·h)·d/D, with h = (h·D)/D
