@@ -472,3 +472,203 @@ def format_text(report: dict) -> str:
 def format_json(report: dict) -> str:
     """The benchmark as JSON (the documented ``results`` and the run's date, machine and notes)."""
     return json.dumps(report, indent=1)
+
+
+# --- studies for chapter 8 (small sizes, quick) ------------------------------------------------------
+
+QUANTITIES = ("positions", "velocities", "accelerations")
+
+
+def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
+                   tolerances: Sequence[float] = NEWTON_TOLERANCES,
+                   steps: Sequence[float] = (1e-1, 1e-3, 1e-5, 1e-7)) -> list[dict]:
+    """Cost and error of every method for each quantity: the data of a work-precision diagram.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with two unknown coordinates.
+    n : int
+        Crank positions, evenly over a turn.
+    repeat : int
+        Best of this many runs.
+    tolerances, steps : sequence of float
+        Newton's tolerances; the steps h (rad) of the central differences.
+
+    Returns
+    -------
+    list of dict
+        ``{"method", "parameter", "quantity", "ns_per_position", "error"}``. Each method is timed
+        at the order its quantity needs (positions: order 0 …); a central difference is charged the
+        closed-form positions it differentiates.
+    """
+    phi = np.arange(n) * (2.0 * math.pi / n)
+    ref = reference(mechanism, phi)
+    rows = []
+
+    def add(method, parameter, k, seconds, error):
+        rows.append({"method": method, "parameter": parameter, "quantity": QUANTITIES[k],
+                     "ns_per_position": seconds / n * 1e9, "error": error})
+
+    for k in range(3):
+        seconds = best_time(lambda: mechanism.solve(phi, OMEGA, order=k), repeat)
+        errors = coordinate_errors(mechanism, *_coordinates(mechanism, mechanism.solve(phi, OMEGA, order=k), k), ref)
+        add("closed form", None, k, seconds, errors[k])
+    guess = np.array([c.value for c in mechanism.coordinates(mechanism.solve(phi - math.radians(1.0), order=0))])
+    for tol in tolerances:
+        for k in range(3):
+            def newton():
+                return solve_constraints(mechanism.constraints, guess, phi, OMEGA, 0.0, order=k, tol=tol)
+            seconds = best_time(newton, repeat)
+            g = newton()
+            add("newton", tol, k, seconds, coordinate_errors(mechanism, g.q, g.q_t, g.q_tt, ref)[k])
+    angles = _angle_rows(mechanism)
+    for k in (1, 2):
+        for h in steps:
+            def difference():
+                return [central_difference(lambda a, r=r: _position_row(mechanism, a, r), phi, OMEGA, h, k,
+                                           angle=angles[r]) for r in range(2)]
+            seconds = best_time(difference, repeat)
+            values = difference()
+            add("central difference", h, k, seconds,
+                max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(2)))
+    return rows
+
+
+def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> dict[str, np.ndarray]:
+    """Errors of central differences of the closed-form positions against the step h (rad).
+
+    Returns ``{"velocities": …, "accelerations": …}``, the largest error over ``n`` positions for each
+    step (rad/s, m/s … and per second squared, at ω = 1 rad/s).
+    """
+    phi = np.arange(n) * (2.0 * math.pi / n)
+    ref = reference(mechanism, phi)
+    angles = _angle_rows(mechanism)
+    out = {}
+    for k, name in ((1, "velocities"), (2, "accelerations")):
+        errors = []
+        for h in steps:
+            values = [central_difference(lambda a, r=r: _position_row(mechanism, a, r), phi, OMEGA, h, k,
+                                         angle=angles[r]) for r in range(2)]
+            errors.append(max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(2)))
+        out[name] = np.array(errors)
+    return out
+
+
+def cost_against_size(mechanism: Mechanism, sizes: Sequence[int], repeat: int = 3,
+                      loop_limit: int = 2000) -> dict[str, np.ndarray]:
+    """Time per position (ns) of the vectorized closed form (order 0 and 2) and of a loop per angle.
+
+    The loop calls ``solve`` once per crank angle, as a program written without arrays would;
+    it is timed only for sizes up to ``loop_limit`` (``nan`` above).
+    """
+    out = {"vectorized, order 0": [], "vectorized, order 2": [], "loop per angle, order 2": []}
+    for n in sizes:
+        phi = np.arange(n) * (2.0 * math.pi / n)
+        for order in (0, 2):
+            seconds = best_time(lambda: mechanism.solve(phi, OMEGA, order=order), repeat)
+            out[f"vectorized, order {order}"].append(seconds / n * 1e9)
+        if n <= loop_limit:
+            seconds = best_time(lambda: [mechanism.solve(phi[i:i + 1], OMEGA) for i in range(n)], repeat)
+            out["loop per angle, order 2"].append(seconds / n * 1e9)
+        else:
+            out["loop per angle, order 2"].append(math.nan)
+    return {key: np.array(value) for key, value in out.items()}
+
+
+# --- figures for chapter 8 -------------------------------------------------------------------------
+
+_METHOD_STYLE = {"closed form": ("o", "#1f77b4"), "newton": ("s", "#ff7f0e"),
+                 "central difference": ("^", "#2ca02c"), "memory floor": ("", "#7f7f7f"),
+                 "pylinkage step_fast": ("D", "#d62728"), "pylinkage step": ("v", "#9467bd")}
+
+
+def plot_work_precision(rows: list[dict], axes=None):
+    """Work-precision diagrams: error against time per position, one panel per quantity.
+
+    Newton's points are labelled with their tolerance, the central differences with their step.
+    Returns the axes.
+    """
+    import matplotlib.pyplot as plt
+
+    if axes is None:
+        _, axes = plt.subplots(1, 3, figsize=(11, 3.6), sharey=True)
+    for ax, quantity in zip(axes, QUANTITIES):
+        for method, (marker, colour) in _METHOD_STYLE.items():
+            chosen = [r for r in rows if r["method"] == method and r["quantity"] == quantity]
+            if not chosen:
+                continue
+            x = [r["ns_per_position"] for r in chosen]
+            y = [max(r["error"], 1e-17) for r in chosen]
+            ax.plot(x, y, marker=marker, color=colour, ls="-" if len(chosen) > 1 else "", label=method)
+            for r, xi, yi in zip(chosen, x, y):
+                if r["parameter"] is not None:
+                    ax.annotate(f"{r['parameter']:.0e}", (xi, yi), xytext=(4, 2), textcoords="offset points",
+                                fontsize=7, color=colour)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.xaxis.set_minor_formatter(plt.NullFormatter())
+        ax.set_title(quantity)
+        ax.set_xlabel("time per position, ns")
+    axes[0].set_ylabel("largest error (rad, m; per s, per s²)")
+    axes[-1].legend(loc="lower right", fontsize=8)
+    return axes
+
+
+def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=None):
+    """The U-shaped error of central differences against the step h, with its two asymptotes.
+
+    Truncation: ``h²/6·|q'''|`` (velocities), ``h²/12·|q''''|`` (accelerations), fitted at the largest
+    step; round-off: ``ε/h`` and ``4ε/h²`` times the size of the coordinates (about 1 here).
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6, 4))
+    h = np.asarray(steps, dtype=float)
+    eps = np.finfo(float).eps
+    for (name, values), colour, power in zip(errors.items(), ("#1f77b4", "#d62728"), (1, 2)):
+        ax.loglog(h, values, "o-", color=colour, label=f"{name}: error")
+        truncation = values[0] * (h / h[0]) ** 2
+        roundoff = (1 if power == 1 else 4) * eps / h**power
+        ax.loglog(h, truncation, ":", color=colour, lw=1)
+        ax.loglog(h, roundoff, "--", color=colour, lw=1)
+    ax.plot([], [], "k:", lw=1, label="truncation ∝ h²")
+    ax.plot([], [], "k--", lw=1, label="round-off ∝ ε/h, ε/h²")
+    ax.set_ylim(1e-12, 1e1)
+    ax.set_xlabel("step h, rad")
+    ax.set_ylabel("largest error, 1/s or 1/s²")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_stored(report: dict, mechanism: str = "four-bar", ax=None):
+    """Time per position against the number of positions, from a stored benchmark run."""
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.5, 4))
+    series = {}
+    for r in report["results"]:
+        if r["mechanism"] != mechanism:
+            continue
+        if r["method"] in ("closed form", "memory floor"):
+            key = f"{r['method']}, order {r['order']}"
+        elif r["method"] == "newton" and r["parameter"] == min(NEWTON_TOLERANCES):
+            key = f"newton, tol {r['parameter']:.0e}"
+        elif r["method"].startswith("pylinkage"):
+            key = r["method"]
+        else:
+            continue
+        series.setdefault(key, []).append((r["n"], r["ns_per_position"]))
+    for key, points in series.items():
+        points.sort()
+        method = key.split(",")[0]
+        marker, colour = _METHOD_STYLE.get(method, ("o", "k"))
+        order = key.rsplit(" ", 1)[-1]
+        ls = {"0": ":", "1": "--"}.get(order, "-")
+        ax.loglog(*zip(*points), marker=marker or ".", color=colour, ls=ls, label=key)
+    ax.set_xlabel("number of positions n")
+    ax.set_ylabel("time per position, ns")
+    ax.legend(fontsize=7, ncol=2)
+    return ax

@@ -14,7 +14,7 @@ import numpy as np
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from .blocks.circle_line import slider_on_line
 from .blocks.crank import crank_pin
-from .errors import AssemblyError, require_branch, require_finite, require_length
+from .errors import AssemblyError, describe_range, require_branch, require_finite, require_length
 from .motion import AngleMotion, fixed_point
 
 __all__ = ["CrankSlider", "assembly_ranges"]
@@ -58,7 +58,7 @@ def assembly_ranges(crank: float, rod: float, offset: float) -> list[tuple[float
 
 
 def _describe_ranges(ranges: list[tuple[float, float]]) -> str:
-    return " and ".join(f"[{math.degrees(lo):.4g}°, {math.degrees(hi):.4g}°]" for lo, hi in ranges)
+    return " and ".join(describe_range(lo, hi) for lo, hi in ranges)
 
 
 class CrankSlider(Mechanism):

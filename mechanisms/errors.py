@@ -20,6 +20,7 @@ __all__ = [
     "require_branch",
     "require_order",
     "describe_angles",
+    "describe_range",
 ]
 
 
@@ -68,8 +69,7 @@ class AssemblyError(MechanismError, ValueError):
         if self.angles is not None and self.angles.size:
             message += f" at crank angle(s) {describe_angles(self.angles)}"
         if valid_range is not None:
-            lo, hi = (math.degrees(v) for v in valid_range)
-            message += f"; it assembles only for crank angles in [{lo:.4g}°, {hi:.4g}°]"
+            message += f"; it assembles only for crank angles in {describe_range(*valid_range)}"
         super().__init__(message)
 
 
@@ -84,7 +84,7 @@ class DeadCentreWarning(UserWarning):
 def describe_angles(angles, limit: int = 6) -> str:
     """Return crank angles (rad) as a short list in degrees, for messages."""
     deg = np.degrees(np.atleast_1d(np.asarray(angles, dtype=float)))
-    shown = ", ".join(f"{d:.6g}°" for d in deg[:limit])
+    shown = ", ".join(f"{d:.6g}°" for d in deg[:limit])  # exact enough to find the position again
     if deg.size > limit:
         shown += f", … ({deg.size} angles in all)"
     return shown
@@ -98,6 +98,11 @@ def _number(name: str, value, requirement: str, positive: bool) -> float:
     if not math.isfinite(number) or (positive and number <= 0.0):
         raise InvalidParameterError(name, value, requirement)
     return number
+
+
+def describe_range(low: float, high: float) -> str:
+    """A crank-angle interval (rad) for messages: ``[-44.43°, 224.43°]``."""
+    return f"[{math.degrees(low):.2f}°, {math.degrees(high):.2f}°]"
 
 
 def require_finite(name: str, value) -> float:

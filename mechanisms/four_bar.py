@@ -23,7 +23,8 @@ import numpy as np
 from .base import Bar, Ground, Mechanism, Parameter, Solution
 from .blocks.circle_circle import hinge
 from .blocks.crank import crank_pin
-from .errors import AssemblyError, InvalidParameterError, require_branch, require_finite, require_length
+from .errors import (AssemblyError, InvalidParameterError, describe_range, require_branch, require_finite,
+                     require_length)
 from .motion import AngleMotion, Motion, fixed_point
 
 __all__ = [
@@ -332,7 +333,7 @@ class FourBar(Mechanism):
                 valid = intervals[0]
             elif intervals:
                 reason += " (it assembles for crank angles in " + " and ".join(
-                    f"[{math.degrees(lo):.4g}°, {math.degrees(hi):.4g}°]" for lo, hi in intervals) + ")"
+                    describe_range(lo, hi) for lo, hi in intervals) + ")"
             else:
                 reason += " (at no crank angle)"
             raise AssemblyError(reason, error.angles, valid) from None

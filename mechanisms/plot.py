@@ -344,7 +344,7 @@ def _to_html(fig, frame, count: int, interval: int) -> str:
 
 def _limits(values: np.ndarray, margin: float) -> tuple[float, float, float, float]:
     return (values.real.min() - margin, values.real.max() + margin,
-            values.imag.min() - 2 * margin, values.imag.max() + margin)
+            values.imag.min() - 1.3 * margin, values.imag.max() + margin)  # room for hatching below
 
 
 def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] = (), frames: int | None = None,

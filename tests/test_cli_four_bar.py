@@ -58,7 +58,7 @@ def test_lambda_text_and_csv(capsys):
 def test_assembly_error_is_reported(capsys):
     status, _, err = run(["table", "four-bar", "--crank", "2", "--coupler", "2", "--rocker", "2", "--frame", "3,0",
                           "--omega", "1"], capsys)
-    assert status == 2 and "cannot be assembled" in err and "104.5°" in err
+    assert status == 2 and "cannot be assembled" in err and "104.48°" in err
 
 
 def test_bad_branch_and_frame(capsys):

@@ -195,7 +195,7 @@ def test_outside_the_assembly_range():
         m.solve(np.radians([0.0, 240.0, 270.0, 300.0]), 1.0)
     np.testing.assert_allclose(np.degrees(info.value.angles), [240.0, 270.0, 300.0])
     np.testing.assert_allclose(np.degrees(info.value.valid_range), [-30.0, 210.0])
-    assert "[-30°, 210°]" in str(info.value)
+    assert "[-30.00°, 210.00°]" in str(info.value)
     sol = m.solve(np.radians([-30.0, 0.0, 210.0]), 1.0, order=0)  # the ends themselves assemble
     np.testing.assert_allclose(sol.point("B").value[[0, 2]], [np.sqrt(0.1**2 - 0.05**2) + 0.1j,
                                                               -np.sqrt(0.1**2 - 0.05**2) + 0.1j], atol=1e-15)
@@ -204,7 +204,7 @@ def test_outside_the_assembly_range():
 def test_two_assembly_ranges_are_named():
     # axial, rod 0.1 m < crank 0.2 m: |sin φ| ≤ 1/2, two arcs [−30°, 30°] and [150°, 210°]
     m = mech.CrankSlider(0.2, 0.1)
-    with pytest.raises(AssemblyError, match=r"\[-30°, 30°\] and \[150°, 210°\]"):
+    with pytest.raises(AssemblyError, match=r"\[-30.00°, 30.00°\] and \[150.00°, 210.00°\]"):
         m.solve(np.radians([90.0]), 1.0)
 
 

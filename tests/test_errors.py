@@ -43,7 +43,7 @@ def test_assembly_error_names_angles_and_range():
     text = str(err)
     assert "the rod cannot reach the guide" in text
     assert "200°, 210°" in text
-    assert "[-30°, 180°]" in text
+    assert "[-30.00°, 180.00°]" in text
 
 
 def test_describe_angles_shortens_long_lists():

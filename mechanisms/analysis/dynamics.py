@@ -175,7 +175,7 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
     right-hand side the local error is O(h⁵) and the global error O(h⁴): halving the step
     divides the error by about 16. The tests measure it as the drift of the energy of a free
     run (no drive, no load), which the exact motion conserves: for the crank-slider of
-    chapter 6, below 1e-7 of the energy after 5 revolutions at 200 steps per revolution, and
+    chapter 6, below 1e-7 of the energy over 3 revolutions at 200 steps per revolution, and
     about 16 times less when h halves.
     A load with a jump in its reduced torque lowers the order near the jump; choose h small
     against the angle over which the load changes.

@@ -1,0 +1,123 @@
+"""The benchmark (mechanisms.bench and ``python -m mechanisms bench``) at a tiny size.
+
+No test here asserts a time: the machines that run the tests are shared and their timings
+vary. What is tested is that the command runs, reports every method with the documented keys,
+and that its errors are right (the reference against the generic solver, the closed form
+against the reference).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import mechanisms as mech
+from mechanisms import bench
+from mechanisms.cli import main
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    return bench.run(sizes=[40], repeat=1)
+
+
+def test_cli_json_has_the_documented_keys(capsys):
+    assert main(["bench", "--sizes", "24", "--repeat", "1", "--format", "json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["results"]
+    for result in out["results"]:
+        assert tuple(result) == bench.RESULT_KEYS
+        assert result["n"] >= 1 and result["seconds"] > 0
+        assert result["ns_per_position"] == pytest.approx(result["seconds"] / result["n"] * 1e9)
+    assert {"date", "machine", "reference", "notes"} <= set(out)
+
+
+def test_cli_text_and_bad_sizes(capsys):
+    assert main(["bench", "--sizes", "16", "--repeat", "1"]) == 0
+    text = capsys.readouterr().out
+    for word in ("closed form", "newton", "central difference", "memory floor", "four-bar", "slotted-lever"):
+        assert word in text
+    assert main(["bench", "--sizes", "0"]) == 2
+    assert "--sizes" in capsys.readouterr().err
+
+
+def test_every_method_of_every_mechanism_is_reported(report):
+    found = {(r["mechanism"], r["method"], r["order"]) for r in report["results"]}
+    for name in ("crank-slider", "four-bar", "slotted-lever"):
+        for order in (0, 1, 2):
+            assert (name, "closed form", order) in found
+            assert (name, "memory floor", order) in found
+        assert (name, "newton", 2) in found
+        assert (name, "central difference", 1) in found and (name, "central difference", 2) in found
+    newton = [r["parameter"] for r in report["results"] if r["method"] == "newton" and r["mechanism"] == "four-bar"]
+    assert newton == list(bench.NEWTON_TOLERANCES)
+
+
+def test_peers_are_reported_or_their_absence_is_said(report):
+    peers = [r for r in report["results"] if r["method"].startswith("pylinkage")]
+    if bench.pylinkage_available():
+        assert {r["method"] for r in peers} == {"pylinkage step", "pylinkage step_fast"}
+        # pylinkage accumulates the crank angle step by step: its error is small but not round-off
+        assert all(0 < r["max_error"] < 1e-9 for r in peers)
+    else:
+        assert not peers
+        assert any("pylinkage" in note for note in report["notes"])
+
+
+def test_errors_are_what_the_methods_deserve(report):
+    results = report["results"]
+    closed = [r["max_error"] for r in results if r["method"] == "closed form"]
+    assert max(closed) <= 1e-14                     # round-off only
+    assert all(r["max_error"] is None for r in results if r["method"] == "memory floor")
+    for name in ("crank-slider", "four-bar", "slotted-lever"):
+        newton = {r["parameter"]: r["max_error"] for r in results
+                  if r["method"] == "newton" and r["mechanism"] == name}
+        assert newton[1e-14] <= 1e-14 and newton[1e-2] > newton[1e-14]
+        first = {r["parameter"]: r["max_error"] for r in results
+                 if r["method"] == "central difference" and r["order"] == 1 and r["mechanism"] == name}
+        # truncation error ∝ h² while h is large: a step 10× smaller gives about 100× less error
+        assert 50 < first[1e-2] / first[1e-3] < 200
+        # round-off ∝ 1/h takes over below the best step: h = 1e-6 is worse than 1e-5
+        assert first[1e-6] > first[1e-5]
+
+
+def test_reference_agrees_with_the_generic_solver_and_is_extended():
+    m = bench.benchmark_mechanisms()["slotted-lever"]
+    phi = np.linspace(0.0, 2.0 * np.pi, 30, endpoint=False)
+    q, q_t, q_tt = bench.reference(m, phi, omega=1.5, alpha=0.3)
+    assert q.dtype == np.longdouble
+    generic = mech.verify.solve_constraints(m.constraints, q[:, 0].astype(float), phi, 1.5, 0.3, tol=1e-15)
+    # two independent solutions of the same constraint equations agree to round-off
+    assert np.max(np.abs(np.angle(np.exp(1j * (generic.q[0] - q[0].astype(float)))))) <= 1e-15
+    assert np.max(np.abs(generic.q_t - q_t.astype(float))) <= 1e-14
+    assert np.max(np.abs(generic.q_tt - q_tt.astype(float))) <= 1e-13
+
+
+def test_coordinate_errors_and_output_bytes():
+    m = bench.benchmark_mechanisms()["four-bar"]
+    phi = np.linspace(0.0, 2.0 * np.pi, 50)
+    ref = bench.reference(m, phi)
+    sol = m.solve(phi, omega=1.0, order=1)
+    coords = m.coordinates(sol)
+    q = np.array([c.value for c in coords])
+    q_t = np.array([c.velocity for c in coords])
+    errors = bench.coordinate_errors(m, q + 2 * np.pi, q_t, None, ref)   # a whole turn is no error
+    assert errors[0] <= 1e-14 and errors[1] <= 1e-14 and math.isnan(errors[2])
+    # order 1: two angles and one crank speed (real, 8 B) and four points (complex, 16 B),
+    # each with a value and a velocity; the fixed points' zero velocities count once each
+    assert bench.output_bytes(sol) == 50 * (2 * 2 * 8 + 8 + 4 * 16 + 2 * 16 + 2 * 16)
+    assert bench.output_bytes(m.solve(phi, order=0)) == 50 * (2 * 8 + 4 * 16)
+
+
+def test_best_time_keeps_the_shortest():
+    calls = []
+    assert bench.best_time(lambda: calls.append(1), 4) >= 0.0
+    assert len(calls) == 4
+
+
+def test_format_text_lists_every_result(report):
+    text = bench.format_text(report)
+    assert text.count("\n") >= len(report["results"])
