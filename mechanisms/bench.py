@@ -670,5 +670,5 @@ def plot_stored(report: dict, mechanism: str = "four-bar", ax=None):
         ax.loglog(*zip(*points), marker=marker or ".", color=colour, ls=ls, label=key)
     ax.set_xlabel("number of positions n")
     ax.set_ylabel("time per position, ns")
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
     return ax

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from ._blocks_of_positions import solve_in_blocks
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from .blocks.circle_line import slider_on_line
 from .blocks.crank import crank_pin
@@ -112,6 +113,10 @@ class CrankSlider(Mechanism):
         return assembly_ranges(self.crank, self.rod, self.offset)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        # long arrays block by block, in the processor's cache (chapter 8)
+        return solve_in_blocks(self._solve_block, crank, order, self.links)
+
+    def _solve_block(self, crank: AngleMotion, order: int) -> Solution:
         phi = crank.value
         pin = crank_pin(crank, self.crank)
         try:

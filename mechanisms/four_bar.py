@@ -20,6 +20,7 @@ from typing import Sequence
 
 import numpy as np
 
+from ._blocks_of_positions import solve_in_blocks
 from .base import Bar, Ground, Mechanism, Parameter, Solution
 from .blocks.circle_circle import hinge
 from .blocks.crank import crank_pin
@@ -318,6 +319,10 @@ class FourBar(Mechanism):
         return np.broadcast_to(side, phi.shape).copy()
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        # long arrays block by block, in the processor's cache (chapter 8)
+        return solve_in_blocks(self._solve_block, crank, order, self.links)
+
+    def _solve_block(self, crank: AngleMotion, order: int) -> Solution:
         phi = crank.value
         pin = crank_pin(crank, self.crank)
         pivot = fixed_point(self.pivot, phi, order)

@@ -24,6 +24,7 @@ from typing import Sequence
 
 import numpy as np
 
+from ._blocks_of_positions import solve_in_blocks
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from .blocks.circle_line import slider_on_line
 from .blocks.crank import crank_pin
@@ -107,6 +108,10 @@ class SlottedLever(Mechanism):
                                             "block stays in the slot")
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        # long arrays block by block, in the processor's cache (chapter 8)
+        return solve_in_blocks(self._solve_block, crank, order, self.links)
+
+    def _solve_block(self, crank: AngleMotion, order: int) -> Solution:
         pin, block = _lever_part(crank, self.crank, self.pivot_point, self.kind)
         xi = block.lever_angle
         points = {"O": fixed_point(0j, crank.value, order), "A": pin,

@@ -17,6 +17,7 @@ from __future__ import annotations
 import functools
 import http.server
 import pathlib
+import re
 import threading
 
 import pytest
@@ -187,7 +188,35 @@ def test_page_renders(browser, servers, edition, page_path):
             assert animation.locator("input.anim-slider").count() == 1, "animation without its slider"
         shots = EDITIONS[edition][2]
         shots.mkdir(parents=True, exist_ok=True)
-        page.screenshot(path=str(shots / (page_path.replace("/", "_") + ".png")), full_page=False)
+        name = page_path.replace("/", "_")
+        page.screenshot(path=str(shots / f"{name}.png"), full_page=False)
+        assert page.evaluate(NO_OVERFLOW), "the page scrolls sideways on a desktop screen"
+        page.set_viewport_size(PHONE)
+        page.wait_for_timeout(200)
+        page.screenshot(path=str(shots / f"{name}.phone.png"), full_page=False)
+        assert page.evaluate(NO_OVERFLOW), f"the page scrolls sideways on a phone ({PHONE['width']} px)"
         assert problems == [], "\n".join(problems)
     finally:
         context.close()
+
+
+# The text column must not push the page sideways: wide tables, code and equations scroll in their
+# own boxes (the theme's overflow rules), the page itself never does.
+NO_OVERFLOW = "document.documentElement.scrollWidth <= window.innerWidth + 1"
+PHONE = {"width": 390, "height": 844}
+
+
+@pytest.mark.parametrize("edition", list(EDITIONS))
+def test_internal_links_resolve(edition):
+    """Every link from a page to another file of the site points to a file that exists (no 404)."""
+    site = require_built(edition)
+    missing = []
+    for page in site_pages(site):
+        html = (site / page).read_text(encoding="utf8")
+        for target in re.findall(r'(?:href|src)="([^"#?]+)[^"]*"', html):
+            if re.match(r"^[a-z]+:", target) or target.startswith("//"):
+                continue  # an external address or a data: URI: blocked offline, checked in test_page_renders
+            resolved = (site / page).parent / target
+            if not resolved.exists():
+                missing.append(f"{page} → {target}")
+    assert missing == [], "links to files that do not exist:\n" + "\n".join(sorted(set(missing))[:30])

@@ -173,10 +173,12 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
         singular = np.broadcast_to(singular, np.shape(point)).copy()
     if order == 0:
         return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
-    det = _cross(arm_p, arm_q)
     any_singular = singular.any()
     with np.errstate(divide="ignore", invalid="ignore"):
-        omega_p, omega_q = _solve_rates(arm_p, arm_q, q.velocity - p.velocity, det)
+        # Cramer's determinant r_p × r_q = branch·h·D (the geometry above), free of cancellation
+        inverse_det = 1.0 / (side * height_distance)
+        rhs = q.velocity - p.velocity
+        omega_p, omega_q = _dot(arm_q, rhs) * inverse_det, _dot(arm_p, rhs) * inverse_det
         if any_singular:
             omega_p = np.where(singular, np.nan, omega_p)
             omega_q = np.where(singular, np.nan, omega_q)
@@ -186,7 +188,7 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
                          AngleMotion(theta_q, omega_q), singular)
         square_p, square_q = omega_p * omega_p, omega_q * omega_q
         rhs = q.acceleration - p.acceleration + square_p * arm_p - square_q * arm_q
-        alpha_p, alpha_q = _solve_rates(arm_p, arm_q, rhs, det)
+        alpha_p, alpha_q = _dot(arm_q, rhs) * inverse_det, _dot(arm_p, rhs) * inverse_det
         acceleration = p.acceleration + (1j * alpha_p - square_p) * arm_p
     return Hinge(PointMotion(point, velocity, acceleration), AngleMotion(theta_p, omega_p, alpha_p),
                  AngleMotion(theta_q, omega_q, alpha_q), singular)
