@@ -31,6 +31,7 @@ class _Gather:
     def __init__(self, first: Solution, n: int):
         self.n = n
         self._targets: dict[int, np.ndarray] = {}     # id of a block's array → the full array
+        self._zeros: set[int] = set()                  # full arrays that are still all zero
         self._layout = self._walk(first, allocate=True)
 
     def _target(self, array, allocate: bool):
@@ -38,7 +39,14 @@ class _Gather:
             return None
         key = id(array)
         if allocate and key not in self._targets:
-            self._targets[key] = np.empty(self.n, dtype=np.asarray(array).dtype)
+            array = np.asarray(array)
+            if array.any():
+                self._targets[key] = np.empty(self.n, dtype=array.dtype)
+            else:
+                # zeros (a fixed point's position at the origin, its velocity and acceleration): memory
+                # that the system hands out zeroed and that is written only if a block is not zero
+                self._targets[key] = np.zeros(self.n, dtype=array.dtype)
+                self._zeros.add(id(self._targets[key]))
         return self._targets.get(key)
 
     def _walk(self, part: Solution, allocate: bool = False):
@@ -59,11 +67,16 @@ class _Gather:
         for (_, _, _, targets), motion in zip(layout, motions):
             for target, values in zip(targets, motion.derivatives()):
                 if target is not None:
-                    target[where] = values
+                    self._put(target, where, values)
         for joint, values in extras.items():
             for key, target in values.items():
-                target[where] = part.extras[joint][key]
-        singular[where] = part.singular
+                self._put(target, where, part.extras[joint][key])
+        self._put(singular, where, part.singular)
+
+    def _put(self, target: np.ndarray, where: slice, values: np.ndarray) -> None:
+        if id(target) in self._zeros and not values.any():
+            return
+        target[where] = values
 
     def solution(self, crank: AngleMotion, order: int, links: dict[str, str]) -> Solution:
         layout, extras, singular = self._layout
