@@ -47,7 +47,8 @@ ROLE_COLOURS = {
     "slider": "#9467bd",
     "point": "#ff7f0e",
 }
-PATH_COLOURS = ("#8c564b", "#ff7f0e", "#7f7f7f", "#bcbd22", "#1f77b4", "#2ca02c")
+PATH_COLOURS = ("#8c564b", "#ff7f0e", "#7f7f7f", "#bcbd22", "#1f77b4", "#2ca02c", "#9467bd", "#d62728",
+                "#17a589", "#5d6d7e")
 """Colours of trajectories, in order (distinct from the vector colours)."""
 ANIMATION_DPI = 72
 """Resolution of animation frames: 432 × 288 px for a 6 × 4 in figure, about 15 kB a frame."""
@@ -125,7 +126,8 @@ def _extent(solution: Solution) -> float:
 
 
 def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labels: bool = True,
-         size: float | None = None, guide_half_length: float | None = None):
+         size: float | None = None, guide_half_length: float | None = None,
+         label_offset: tuple[float, float] = (5.0, 5.0)):
     """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
 
     Parameters
@@ -142,6 +144,8 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labe
         Write the joint names next to the joints.
     size : float, optional
         Size of hinges and symbols (m); by default 3 % of the mechanism's extent.
+    label_offset : (float, float)
+        Where the joint names sit relative to their joints, in points.
 
     Returns
     -------
@@ -169,7 +173,7 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labe
     ax.plot(hinges.real, hinges.imag, "o", ms=6, mfc="white", mec="black", mew=1.2, zorder=4)
     if labels:
         for name, p in where.items():
-            ax.annotate(name, (p.real, p.imag), xytext=(5, 5), textcoords="offset points", fontsize=10,
+            ax.annotate(name, (p.real, p.imag), xytext=label_offset, textcoords="offset points", fontsize=10,
                         zorder=5)
     ax.set_xlabel("x, m")
     ax.set_ylabel("y, m")
@@ -242,14 +246,23 @@ def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[i
     return ax
 
 
-def trajectories(solution: Solution, points: dict[str, PointMotion] | Sequence[str], ax=None,
+def _full_turn(phi: np.ndarray) -> bool:
+    """True when evenly spaced crank angles cover a whole turn (the last step would close it)."""
+    if np.size(phi) < 3:
+        return False
+    step = np.diff(phi)
+    return bool(np.allclose(step, step[0]) and abs(abs(phi[-1] - phi[0] + step[0]) - 2 * np.pi) < 1e-9)
+
+
+def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Sequence[str], ax=None,
                  colours: Iterable[str] | None = None):
     """Draw the paths of points: named joints of the solution or given point motions.
 
     Parameters
     ----------
-    solution : Solution
-        The solution (positions over the crank angles).
+    solution : Solution or None
+        The solution (positions over the crank angles); may be None when ``points`` is a dict.
+        When its crank angles cover a whole turn evenly, each path is drawn closed.
     points : sequence of str or dict
         Joint names, or ``{label: PointMotion}`` (e.g. from ``solution.point_on``).
     """
@@ -257,8 +270,10 @@ def trajectories(solution: Solution, points: dict[str, PointMotion] | Sequence[s
     if not isinstance(points, dict):
         points = {name: solution.point(name) for name in points}
     colours = iter(colours if colours is not None else PATH_COLOURS * 4)
+    closed = solution is not None and _full_turn(solution.phi)
     for label, motion in points.items():
-        ax.plot(motion.x, motion.y, lw=1.2, label=label, color=next(colours))
+        x, y = (np.append(motion.x, motion.x[0]), np.append(motion.y, motion.y[0])) if closed else (motion.x, motion.y)
+        ax.plot(x, y, lw=1.2, label=label, color=next(colours))
     ax.set_xlabel("x, m")
     ax.set_ylabel("y, m")
     return ax

@@ -88,3 +88,13 @@ def test_difference_prints_round_off_as_a_bound():
     assert mech.difference(3.4e-6, unit="m") == "3.4e-06 m"
     assert mech.difference(2.2e-16, unit="m") == "< 1e-12 m"
     assert mech.difference(-5e-13, floor=1e-14) == "-5.0e-13"
+
+
+def test_paths_of_a_full_turn_are_closed():
+    yoke = ScotchYoke(0.1)
+    ax = plot.trajectories(yoke.solve(PHI, order=0), ["A"])
+    line = ax.lines[0]
+    assert len(line.get_xdata()) == len(PHI) + 1 and line.get_xdata()[0] == line.get_xdata()[-1]
+    half = plot.trajectories(yoke.solve(PHI[:6], order=0), ["A"])   # half a turn: left open
+    assert len(half.lines[0].get_xdata()) == 6
+    plt.close("all")
