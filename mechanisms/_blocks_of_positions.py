@@ -5,8 +5,9 @@ operation writes an array of 8–16 MB and the next one reads it back: far more 
 processor's cache holds, so the chain waits on main memory. Over a block of some ten thousand
 positions the temporaries stay in the cache, and the memory they use is reused by the next block;
 each block's results are copied once into the arrays over all positions. Every operation of the
-closed forms is elementwise, so the result is the same as solving all positions at once; it comes
-about twice as fast (chapter 8).
+closed forms is elementwise, so the result is that of solving all positions at once, to round-off
+(numpy's vector loops may round an element differently depending on where its array starts in
+memory); it comes about one and a half times as fast (chapter 8).
 """
 
 from __future__ import annotations

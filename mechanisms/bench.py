@@ -246,8 +246,9 @@ def best_time(task: Callable[[], object], repeat: int) -> float:
 def output_bytes(solution: Solution) -> int:
     """Bytes of the arrays a solution holds (angles, points, sliders), each array counted once.
 
-    Arrays that are broadcast views (a zero stride) and the crank angles passed in are not
-    counted: they cost no memory traffic.
+    Not counted, because they cost no memory traffic: the crank angles passed in, broadcast views
+    (a zero stride), and arrays of zeros only (a fixed pivot's velocity …), which the system hands
+    out as zeroed memory that need not be written.
     """
     seen, total = set(), 0
     skip = {np.asarray(solution.phi).__array_interface__["data"][0]}
@@ -259,7 +260,7 @@ def output_bytes(solution: Solution) -> int:
                 continue
             array = np.asarray(array)
             address = array.__array_interface__["data"][0]
-            if address in seen or address in skip or 0 in array.strides:
+            if address in seen or address in skip or 0 in array.strides or not array.any():
                 continue
             seen.add(address)
             total += array.nbytes

@@ -29,6 +29,7 @@ __all__ = [
     "lagrange_point",
     "translated_point",
     "polar",
+    "unit_vector",
 ]
 
 ArrayLike = Union[float, complex, np.ndarray]

@@ -1,7 +1,9 @@
 """Solving long arrays block by block (mechanisms._blocks_of_positions) changes nothing but the time.
 
 The expected values are the same mechanism's solution of all positions at once (``_solve_block``
-on the whole array), which is what the package computed before it worked in blocks.
+on the whole array), which is what the package computed before it worked in blocks. They agree to
+round-off: numpy's vector loops round some elements differently depending on where an array starts
+in memory, so even two solutions of the whole array may differ in the last bit.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ N = 5 * BLOCK + 123          # several blocks and a short last one
 def mechanisms_to_test():
     return [mech.CrankSlider(crank=1.0, rod=3.5, offset=0.5), mech.FourBar(1.0, 3.5, 3.0, (4.0, 0.0)),
             mech.SlottedLever(crank=1.0, pivot=(0.0, 2.0)), mech.SlottedLever(crank=1.0, pivot=(1.0, 0.0)),
-            mech.FourBar(1.0, 4.0, 1.0, (4.0, 0.0))]
+            mech.FourBar(0.3, 0.35, 0.4, (0.1, 0.05), branch=-1)]     # a double crank
 
 
 def assert_same(a, b):
@@ -32,7 +34,8 @@ def assert_same(a, b):
         for u, v in zip(x.derivatives(), y.derivatives()):
             assert (u is None) == (v is None)
             if u is not None:
-                np.testing.assert_array_equal(u, v)        # to the last bit
+                scale = np.nanmax(np.abs(v)) + 1.0
+                np.testing.assert_allclose(u, v, rtol=0, atol=64 * np.finfo(float).eps * scale)
     for joint, values in a.extras.items():
         for key, value in values.items():
             np.testing.assert_array_equal(value, b.extras[joint][key])
@@ -43,7 +46,7 @@ def assert_same(a, b):
 @pytest.mark.parametrize("index", range(5))
 def test_blocks_equal_the_whole_array(index, order):
     m = mechanisms_to_test()[index]
-    phi = np.linspace(0.1, 4.0 * np.pi + 0.1, N)      # avoids the change points at 0 and π
+    phi = np.linspace(0.1, 4.0 * np.pi + 0.1, N)      # two turns
     crank = crank_angle(phi, 3.0, 0.5, order)
     whole = m._solve_block(crank, order)
     blocks = solve_in_blocks(m._solve_block, crank, order, m.links)
