@@ -35,6 +35,10 @@ _STYLE = {  # kind → (line style, line width)
 }
 
 
+# Labels sit on a light box, so a line or an arrowhead under a label does not make it illegible.
+_LABEL_BOX = {"boxstyle": "round,pad=0.12", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
+
+
 def _arrow(ax, tail: complex, head: complex, colour: str, style: str, width: float, zorder: int = 3) -> None:
     ax.annotate("", xy=(head.real, head.imag), xytext=(tail.real, tail.imag),
                 arrowprops={"arrowstyle": "-|>", "color": colour, "lw": width, "linestyle": style,
@@ -87,7 +91,7 @@ def draw_plan(plan: Plan, ax=None, names: bool = True, images: bool = True, titl
             middle = 0.5 * (tail + head)
             side = 1j * (head - tail) / abs(head - tail) * 0.9 * label_offset
             ax.text((middle + side).real, (middle + side).imag, f"${vector.latex}$", fontsize=9, color=shade,
-                    ha="center", va="center", zorder=5)
+                    ha="center", va="center", zorder=5, bbox=_LABEL_BOX)
     # the vertices and their letters, away from the pole (the pole's away from the plan's centre);
     # vertices closer than the letters' size share one label, "a, b"
     groups: list[list[str]] = []
@@ -107,7 +111,7 @@ def draw_plan(plan: Plan, ax=None, names: bool = True, images: bool = True, titl
             ax.plot(drawn[label].real, drawn[label].imag, "o", ms=3.5, color="black", zorder=6)
         text = point + (label_offset + 1.2 * (len(group) - 1)) * away
         ax.text(text.real, text.imag, ", ".join(group), fontsize=11, ha="center", va="center", zorder=6,
-                style="normal" if plan.pole in group else "italic")
+                style="normal" if plan.pole in group else "italic", bbox=_LABEL_BOX)
     values = np.array(list(drawn.values()))
     span = max(np.ptp(values.real), np.ptp(values.imag), 10.0)
     margin = 0.12 * span + label_offset
