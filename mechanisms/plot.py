@@ -362,16 +362,17 @@ def _limits(values: np.ndarray, margin: float) -> tuple[float, float, float, flo
             values.imag.min() - 1.3 * margin, values.imag.max() + margin)  # room for hatching below
 
 
-def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] = (), frames: int | None = None,
-            interval: int = 80, labels: bool = True, title: str | None = None) -> str:
+def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dict[str, PointMotion] = (),
+            frames: int | None = None, interval: int = 80, labels: bool = True, title: str | None = None) -> str:
     """An animation of the mechanism over the solution's positions, as HTML that plays offline.
 
     Parameters
     ----------
     mechanism, solution
         What to animate; the solution's positions are the frames (36–72 is plenty).
-    paths : sequence of str
-        Joint names whose whole trajectories are drawn underneath.
+    paths : sequence of str or dict
+        Joint names, or ``{label: PointMotion}`` (e.g. a centre of mass from
+        ``solution.point_on``), whose whole trajectories are drawn underneath.
     frames : int, optional
         Use only this many evenly spaced positions.
     interval : int
@@ -392,7 +393,8 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] = (),
     def frame(k):
         ax.clear()
         if paths:
-            trajectories(solution, list(paths), ax=ax, colours=["0.7"] * len(paths))
+            trajectories(solution, paths if isinstance(paths, dict) else list(paths), ax=ax,
+                         colours=["0.7"] * len(paths))
         draw(mechanism, solution, chosen[k], ax=ax, labels=labels)
         ax.set_xlim(limits[0], limits[1])
         ax.set_ylim(limits[2], limits[3])

@@ -98,3 +98,10 @@ def test_paths_of_a_full_turn_are_closed():
     half = plot.trajectories(yoke.solve(PHI[:6], order=0), ["A"])   # half a turn: left open
     assert len(half.lines[0].get_xdata()) == 6
     plt.close("all")
+
+
+def test_animation_paths_may_be_point_motions():
+    yoke = ScotchYoke(0.1)
+    sol = yoke.solve(PHI, order=0)
+    html = plot.animate(yoke, sol, paths={"M": sol.point_on("crank", 0.05)}, frames=2)
+    assert "anim-slider" in html
