@@ -302,7 +302,7 @@ def vectors_along(motion: PointMotion, every: int = 1, ax=None, scale_velocity: 
 
 
 def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None, step_deg: int = 30,
-            colours: Iterable[str] | None = None):
+            colours: Iterable[str] | None = None, angle_symbol: str = "φ"):
     """Quantities against the crank angle (degrees, ticks every ``step_deg``).
 
     Parameters
@@ -316,6 +316,8 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None
     colours : iterable of str, optional
         One colour per curve; by default :data:`PATH_COLOURS`, the colours of
         :func:`trajectories`, so a point keeps its colour from path to diagram.
+    angle_symbol : str
+        The crank angle's symbol on the axis (chapter 7 writes ψ, after its source).
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 3.2))
@@ -326,7 +328,7 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None
     lo, hi = np.floor(deg.min() / step_deg) * step_deg, np.ceil(deg.max() / step_deg) * step_deg
     ax.set_xticks(np.arange(lo, hi + 0.5 * step_deg, step_deg))
     ax.set_xlim(deg.min(), deg.max())
-    ax.set_xlabel("crank angle φ, °")
+    ax.set_xlabel(f"crank angle {angle_symbol}, °")
     ax.set_ylabel(ylabel)
     if len(curves) > 1:
         ax.legend()
@@ -363,7 +365,8 @@ def _limits(values: np.ndarray, margin: float) -> tuple[float, float, float, flo
 
 
 def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dict[str, PointMotion] = (),
-            frames: int | None = None, interval: int = 80, labels: bool = True, title: str | None = None) -> str:
+            frames: int | None = None, interval: int = 80, labels: bool = True, title: str | None = None,
+            angle_symbol: str = "φ") -> str:
     """An animation of the mechanism over the solution's positions, as HTML that plays offline.
 
     Parameters
@@ -377,6 +380,8 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dic
         Use only this many evenly spaced positions.
     interval : int
         Milliseconds per frame.
+    angle_symbol : str
+        The crank angle's symbol in each frame's title (chapter 7 writes ψ, after its source).
 
     Returns
     -------
@@ -398,7 +403,7 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dic
         draw(mechanism, solution, chosen[k], ax=ax, labels=labels)
         ax.set_xlim(limits[0], limits[1])
         ax.set_ylim(limits[2], limits[3])
-        ax.set_title(title or f"φ = {np.degrees(solution.phi[chosen[k]]) % 360:.0f}°")
+        ax.set_title(title or f"{angle_symbol} = {np.degrees(solution.phi[chosen[k]]) % 360:.0f}°")
 
     return _to_html(fig, frame, len(chosen), interval)
 
