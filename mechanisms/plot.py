@@ -433,7 +433,7 @@ def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax=None, 
                       0.7 * span, 0.05 * span)
         for rank, i in enumerate(index):
             block = Polygon(_block_corners(first.value[i], angle, 0.05 * span), closed=True, facecolor="none",
-                            edgecolor=colour, lw=1.5, alpha=min(1.0, 0.2 + 0.8 * rank / max(len(index) - 1, 1)))
+                            edgecolor=colour, lw=1.5, alpha=min(1.0, 0.35 + 0.65 * rank / max(len(index) - 1, 1)))
             ax.add_patch(block)
         centre = complex(np.mean(first.value))
         ax.set_ylim(centre.imag - 0.35 * span, centre.imag + 0.35 * span)
@@ -441,7 +441,7 @@ def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax=None, 
         for rank, i in enumerate(index):
             p, q = first.value[i], second.value[i]
             ax.plot([p.real, q.real], [p.imag, q.imag], color=colour, lw=2.5,
-                    alpha=min(1.0, 0.2 + 0.8 * rank / max(len(index) - 1, 1)), solid_capstyle="round")
+                    alpha=min(1.0, 0.35 + 0.65 * rank / max(len(index) - 1, 1)), solid_capstyle="round")
     if paths:
         for motion in (first, second):
             ax.plot(motion.x, motion.y, color="0.6", lw=0.8, ls="--")
