@@ -661,9 +661,10 @@ def plot_stored(report: dict, mechanism: str = "four-bar", ax=None):
             key = r["method"]
         else:
             continue
-        series.setdefault(key, []).append((r["n"], r["ns_per_position"]))
-    for key, points in series.items():
-        points.sort()
+        best = series.setdefault(key, {})
+        best[r["n"]] = min(best.get(r["n"], math.inf), r["ns_per_position"])
+    for key, by_size in series.items():
+        points = sorted(by_size.items())
         method = key.split(",")[0]
         marker, colour = _METHOD_STYLE.get(method, ("o", "k"))
         order = key.rsplit(" ", 1)[-1]

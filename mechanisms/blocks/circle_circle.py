@@ -54,23 +54,9 @@ class Hinge:
     singular: np.ndarray
 
 
-def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """z component of u × v for complex numbers as plane vectors: Im(conj(u)·v)."""
-    return u.real * v.imag - u.imag * v.real
-
-
 def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Scalar product of plane vectors given as complex numbers: Re(conj(u)·v)."""
     return u.real * v.real + u.imag * v.imag
-
-
-def _solve_rates(arm_p: np.ndarray, arm_q: np.ndarray, rhs: np.ndarray, det: np.ndarray):
-    """Solve ``i·x·arm_p − i·y·arm_q = rhs`` for real x, y (Cramer's rule).
-
-    Dotting with ``arm_q`` removes y, dotting with ``arm_p`` removes x:
-    ``x = (arm_q · rhs) / (arm_p × arm_q)``, ``y = (arm_p · rhs) / (arm_p × arm_q)``.
-    """
-    return _dot(arm_q, rhs) / det, _dot(arm_p, rhs) / det
 
 
 def _assembly_failure(distance, shape, total: float, difference: float, tolerance: float, angles) -> None:
@@ -175,7 +161,9 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
         return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
     any_singular = singular.any()
     with np.errstate(divide="ignore", invalid="ignore"):
-        # Cramer's determinant r_p × r_q = branch·h·D (the geometry above), free of cancellation
+        # Solve i·x·r_p − i·y·r_q = rhs for real x, y by Cramer's rule: dotting with r_q removes y,
+        # with r_p removes x, so x = (r_q · rhs)/(r_p × r_q), y = (r_p · rhs)/(r_p × r_q). The
+        # determinant r_p × r_q is branch·h·D of the geometry above, free of cancellation.
         inverse_det = 1.0 / (side * height_distance)
         rhs = q.velocity - p.velocity
         omega_p, omega_q = _dot(arm_q, rhs) * inverse_det, _dot(arm_p, rhs) * inverse_det
