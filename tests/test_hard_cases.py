@@ -15,6 +15,8 @@ import warnings
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.bench import jacobian_condition, reference
@@ -276,3 +278,49 @@ def test_reference_agrees_with_the_generic_solver():
     generic = mech.verify.solve_constraints(m.constraints, ref[0][:, 0].astype(float), phi, 1.0, 0.0, tol=1e-15)
     assert np.max(np.abs(wrap(generic.q - ref[0].astype(float)))) <= 8 * EPS
     assert np.max(np.abs(generic.q_t - ref[1].astype(float))) <= 64 * EPS
+
+
+# --- limits of assembly found by the package itself (regressions from an audit) -------------------
+
+@settings(max_examples=60, deadline=None)
+@given(crank=st.floats(0.05, 1.0), rod=st.floats(0.05, 1.0), offset=st.floats(-0.5, 0.5))
+def test_crank_slider_at_the_ends_of_its_own_ranges(crank, rod, offset):
+    # expected (by the mathematics): at a limit of assembly the rod stands perpendicular to the
+    # guide, so the rates are unbounded: marked singular, never a huge finite number, never an error
+    import warnings
+    from mechanisms.crank_slider import CrankSlider
+    try:
+        m = CrankSlider(crank, rod, offset)
+    except mech.AssemblyError:
+        return                                    # the rod never reaches the guide
+    if m.full_revolution:
+        return
+    ends = np.array([end for interval in m.assembly_ranges for end in interval])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mech.DeadCentreWarning)
+        sol = m.solve(ends, 1.0)
+    v = sol.slider("B").velocity
+    assert np.all(sol.singular | (np.abs(v) < 1e3 * (crank + rod)))
+    assert np.all(~np.isfinite(v[sol.singular]))
+
+
+@settings(max_examples=60, deadline=None)
+@given(lengths=st.tuples(st.floats(0.05, 1.0), st.floats(0.05, 1.0), st.floats(0.05, 1.0)),
+       frame=st.tuples(st.floats(0.05, 1.0), st.floats(-0.3, 0.3)))
+def test_four_bar_at_the_ends_of_its_own_intervals(lengths, frame):
+    import warnings
+    from mechanisms.four_bar import FourBar
+    try:
+        m = FourBar(*lengths, frame)
+        intervals = m.assembly_intervals()
+    except mech.AssemblyError:
+        return
+    ends = np.array([end for interval in intervals for end in interval
+                     if abs(interval[1] - interval[0]) < 2 * np.pi - 1e-9])
+    if ends.size == 0:
+        return
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mech.DeadCentreWarning)
+        sol = m.solve(ends, 1.0)
+    w = sol.angle("rocker").omega
+    assert np.all(sol.singular | (np.abs(w) < 1e4))

@@ -27,8 +27,12 @@ __all__ = ["Hinge", "hinge", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
 ASSEMBLY_TOLERANCE = 1e-12
 """Relative overlap of the circles accepted as touching (round-off), as a fraction of L_p + L_q."""
 
-SINGULAR_TOLERANCE = 1e-9
-"""A hinge is marked singular where |sin| of the angle between its links is below this."""
+SINGULAR_TOLERANCE = 1e-6
+"""A hinge is marked singular where |sin| of the angle between its links is below this.
+
+At a limit of assembly the round-off of the lengths leaves |sin| of order √ε ≈ 1e-8, and rates
+computed from it would be huge finite numbers; 1e-6 is reached only within about 1e-12 rad of a
+limit, where the rates are indeed beyond any use."""
 
 
 @dataclass(frozen=True)

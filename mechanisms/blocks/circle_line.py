@@ -32,6 +32,8 @@ __all__ = ["SliderOnLine", "slider_on_line"]
 # A joint this much (relative to the rod) beyond the reach of the rod is taken as just reaching it:
 # a few units of round-off in h, e.g. from sin(φ) at a crank angle that is exactly a dead centre.
 _REACH_TOLERANCE = 8.0 * np.finfo(float).eps
+_SINGULAR_FACTOR = 100.0
+"""w² below this many times its round-off is a dead centre (w ≲ 6e-7·rod for unit sizes)."""
 
 
 @dataclass(frozen=True)
@@ -109,8 +111,10 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     from differentiating ``w² + h² = rod²`` and ``rod·sin(θ − δ) = −h`` (chapter 3). Where
     ``w = 0`` (the rod perpendicular to the guide) the derivatives divide by zero: they are unbounded
     (``±inf``) or undefined (``nan`` if J moves parallel to the guide there), and ``singular`` marks
-    them. A joint farther than ``rod·(1 + 8ε)`` from the guide is an assembly error; one between
-    ``rod`` and that is treated as exactly at ``rod`` (round-off in h).
+    them; so does a w² within 100 times its round-off of zero, where the computed w is mostly
+    round-off and would give huge finite rates (the crank angles of a limit of assembly, found
+    by an arcsin, land there). A joint beyond reach by more than the round-off of
+    ``w²`` (``8ε·rod·(rod + |J − P|)``) is an assembly error; one within it is taken as at reach.
     """
     rod = require_length("rod", rod)
     branch = require_branch(branch)
@@ -124,7 +128,9 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     local = e_conj * (np.asarray(joint.value, dtype=complex) - through)
     u, h = local.real, local.imag
     reach = (rod - h) * (rod + h)  # w², free of cancellation near |h| = rod
-    unreachable = reach < -_REACH_TOLERANCE * rod * rod
+    # the round-off of w²: h carries that of the joint's coordinates, so it scales with |J − P| too
+    slack = _REACH_TOLERANCE * rod * (rod + np.abs(local))
+    unreachable = reach < -slack
     if np.any(unreachable):
         worst = float(np.max(np.abs(h)))
         where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), h.shape)[unreachable]
@@ -133,8 +139,10 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
         if where is None:
             reason += f" (at {int(np.count_nonzero(unreachable))} position(s))"
         raise AssemblyError(reason, angles=where)
-    w = np.sqrt(np.maximum(reach, 0.0))
-    singular = w == 0.0
+    # within round-off of the rod standing perpendicular to the guide, w itself is unknown: the
+    # position is that limit (w = 0) and its derivatives are unbounded, not large finite numbers
+    singular = reach <= _SINGULAR_FACTOR * slack
+    w = np.where(singular, 0.0, np.sqrt(np.maximum(reach, 0.0)))
 
     s = u + branch * w
     position = through + s * e

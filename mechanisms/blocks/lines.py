@@ -323,13 +323,14 @@ def circle_on_line(centre, radius: float, through, angle, branch: int = 1, angle
     h, u = foot.distance, foot.along
     order = min(h.order, u.order)
     reach = (radius - h.value) * (radius + h.value)
-    unreachable = reach < -8.0 * np.finfo(float).eps * radius**2
+    slack = 8.0 * np.finfo(float).eps * radius * (radius + np.abs(h.value) + np.abs(u.value))  # round-off of w²
+    unreachable = reach < -slack
     if np.any(unreachable):
         where = _where(angles, unreachable)
         raise AssemblyError(f"the circle of radius {radius:g} m does not reach the line: its centre is up to "
                             f"{float(np.max(np.abs(h.value))):.6g} m from it", angles=where)
-    w = np.sqrt(np.maximum(reach, 0.0))
-    singular = w == 0.0
+    singular = reach <= 100.0 * slack   # w within round-off of 0: a dead centre, rates unbounded
+    w = np.where(singular, 0.0, np.sqrt(np.maximum(reach, 0.0)))
     with np.errstate(divide="ignore", invalid="ignore"):
         w_t = -h.value * h.velocity / w if order >= 1 else None
         w_tt = -(h.velocity**2 + h.value * h.acceleration + w_t**2) / w if order >= 2 else None
