@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import warnings
 from abc import ABC, abstractmethod
-from dataclasses import dataclass, field
-from typing import Callable, ClassVar, Sequence
+from dataclasses import dataclass
+from typing import ClassVar, Sequence
 
 import numpy as np
 
 from .blocks.crank import crank_angle
-from .errors import DeadCentreWarning, InvalidParameterError, describe_angles, require_order
+from .errors import DeadCentreWarning, describe_angles, require_finite, require_order
 from .motion import AngleMotion, Motion, PointMotion, point_on_link
 
 __all__ = [
@@ -112,6 +112,7 @@ class Solution:
             Distance v (m) to the left of the link (counter-clockwise side).
         """
         first_joint = self._lookup(self._links, link, "link")
+        along, left = require_finite("along", along), require_finite("left", left)
         return point_on_link(self.point(first_joint), self.angle(link), along, left)
 
 

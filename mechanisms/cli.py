@@ -26,7 +26,10 @@ from .base import Mechanism, Solution, registry
 from .errors import DeadCentreWarning, InvalidParameterError, MechanismError
 from .motion import Motion
 
-__all__ = ["main", "kinematic_table", "parse_angles", "parse_point"]
+__all__ = ["main", "kinematic_table", "parse_angles", "parse_point", "MAX_POSITIONS"]
+
+MAX_POSITIONS = 10_000_000
+"""The most crank positions a table may have (a larger one would not fit in memory as text)."""
 
 
 def parse_angles(text: str) -> np.ndarray:
@@ -37,7 +40,11 @@ def parse_angles(text: str) -> np.ndarray:
         raise InvalidParameterError("--angles", text, "START:STOP:STEP in degrees, e.g. 0:360:30") from None
     if not all(math.isfinite(v) for v in (start, stop, step)) or step == 0 or (stop - start) / step <= 0:
         raise InvalidParameterError("--angles", text, "START:STOP:STEP with a step that reaches STOP")
-    return np.radians(np.arange(start, stop, step))
+    # count the positions first: np.arange with a fractional step may include STOP by round-off
+    count = math.ceil((stop - start) / step - 1e-9)
+    if count > MAX_POSITIONS:
+        raise InvalidParameterError("--angles", text, f"at most {MAX_POSITIONS} positions")
+    return np.radians(start + step * np.arange(count))
 
 
 def parse_point(text: str) -> tuple[str, str, float, float]:
@@ -92,7 +99,7 @@ def kinematic_table(mechanism: Mechanism, solution: Solution,
             sliders[name] = {"s": _number(s.value[i]), "v": _number(s.velocity[i]), "a": _number(s.acceleration[i])}
             for key, values in solution.extras.get(name, {}).items():
                 sliders[name][key] = _number(values[i])
-        rows.append({"phi_deg": _number(np.degrees(solution.phi[i])), "links": links, "points": pts,
+        rows.append({"phi_deg": _number(round(float(np.degrees(solution.phi[i])), 9)), "links": links, "points": pts,
                      "sliders": sliders})
     return rows
 
@@ -150,14 +157,17 @@ def _format(mechanism: Mechanism, omega: float, alpha: float, rows: list[dict], 
 def _table(args: argparse.Namespace) -> str:
     cls = registry[args.mechanism]
     mechanism = cls(**{p.name: getattr(args, p.name) for p in cls.cli_parameters})
-    if not args.angles and args.positions < 1:
-        raise InvalidParameterError("--positions", args.positions, "a whole number ≥ 1")
-    phi = parse_angles(args.angles) if args.angles else np.radians(np.arange(args.positions) * 360.0 / args.positions)
+    positions = 12 if args.positions is None else args.positions
+    if not args.angles and not 1 <= positions <= MAX_POSITIONS:
+        raise InvalidParameterError("--positions", positions, f"a whole number from 1 to {MAX_POSITIONS}")
+    phi = parse_angles(args.angles) if args.angles else np.radians(np.arange(positions) * 360.0 / positions)
     points = [parse_point(p) for p in args.point]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeadCentreWarning)  # unbounded values print as — / null
         solution = mechanism.solve(phi, args.omega, args.alpha, order=2)
     for name, link, _, _ in points:
+        if name in solution.point_names or [n for n, *_ in points].count(name) > 1:
+            raise InvalidParameterError("--point", name, "a new name, not a joint's or another point's")
         if link not in cls.links:
             raise InvalidParameterError("--point", f"{name}={link}", f"on one of the links {', '.join(cls.links)}")
     return _format(mechanism, args.omega, args.alpha, kinematic_table(mechanism, solution, points), args.format)
@@ -181,7 +191,7 @@ def build_parser() -> argparse.ArgumentParser:
         sub.add_argument("--alpha", type=float, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
         where = sub.add_mutually_exclusive_group()
         where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
-        where.add_argument("--positions", type=int, default=12, help="N positions evenly over a turn (default 12)")
+        where.add_argument("--positions", type=int, default=None, help="N positions evenly over a turn (default 12)")
         sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,V]",
                          help="a point fixed to LINK, U m along it from its first joint, V m to its left")
         sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
@@ -277,7 +287,7 @@ def _check(args: argparse.Namespace) -> tuple[str, int]:
     return report.text(), (1 if report.problems else 0)
 
 
-_PAIR = re.compile(r"^-?[\d.]+(e-?\d+)?,-?[\d.]+(e-?\d+)?$")
+_PAIR = re.compile(r"^-?[\d.]+([eE][-+]?\d+)?,-?[\d.]+([eE][-+]?\d+)?$")
 
 
 def _join_negative_pairs(argv: Sequence[str]) -> list[str]:
@@ -324,7 +334,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"error: {error.filename or ''}: {error.strerror}", file=sys.stderr)
             return 2
     if args.command == "table" and args.mechanism is None:
-        parser.parse_args(["table", "--help"])
+        print("error: name a mechanism: " + ", ".join(sorted(registry)) + " (see `table --help`)", file=sys.stderr)
+        return 2
     try:
         print(_table(args))
     except MechanismError as error:

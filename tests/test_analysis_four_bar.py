@@ -112,3 +112,11 @@ def test_best_line_and_straight_part():
     assert 0.01 * half**2 * 2 / 3 <= 0.004 + 1e-12
     with pytest.raises(ValueError):
         straight_part(t, t + 1j * np.abs(t), 100, 1e-6)   # a corner: no straight part
+
+
+@pytest.mark.parametrize("bad", [float("nan"), 0.0, -1.0])
+def test_grashof_class_rejects_bad_lengths(bad):
+    from mechanisms.analysis.four_bar import grashof_class
+    from mechanisms.errors import InvalidParameterError
+    with pytest.raises(InvalidParameterError, match="crank must be a finite length"):
+        grashof_class(bad, 1.0, 1.0, 1.0)

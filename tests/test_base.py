@@ -50,3 +50,11 @@ def test_describe_and_parameters():
     assert yoke.describe() == "ScotchYoke: crank = 0.1 m"
     assert repr(yoke) == "ScotchYoke(crank=0.1)"
     assert "ScotchYoke" not in registry  # no cli_name: not offered by the command line
+
+
+def test_point_on_rejects_non_finite_coordinates():
+    sol = ScotchYoke(0.1).solve(PHI, 2.0)
+    with pytest.raises(InvalidParameterError, match="along must be a finite number"):
+        sol.point_on("crank", np.nan)
+    with pytest.raises(InvalidParameterError, match="left must be a finite number"):
+        sol.point_on("crank", 0.1, np.inf)

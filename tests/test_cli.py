@@ -109,3 +109,30 @@ def test_negative_pairs_are_values_not_options():
     assert cli._join_negative_pairs(["--frame", "-0.4,0.05", "--crank", "1"]) == ["--frame=-0.4,0.05", "--crank", "1"]
     assert cli._join_negative_pairs(["--frame", "0.4,-0.05"]) == ["--frame", "0.4,-0.05"]
     assert cli._join_negative_pairs(["--omega", "-5"]) == ["--omega", "-5"]  # argparse reads plain negatives itself
+
+
+def test_angles_exclude_stop_even_with_fractional_steps():
+    # by hand: 1.0, 1.1, 1.2 (1.3 is the stop) and 0, 30, 60 printed without round-off
+    np.testing.assert_allclose(np.degrees(cli.parse_angles("1:1.3:0.1")), [1.0, 1.1, 1.2])
+    code, out, _ = run("table", "test-yoke", "--crank", "0.1", "--omega", "1", "--angles", "0:90:30", "--format", "json")
+    assert [r["phi_deg"] for r in json.loads(out)["rows"]] == [0.0, 30.0, 60.0]
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--point", "B=crank:0.05"), "--point must be a new name"),
+    (("--angles", "0:1:1e-300"), "--angles must be at most"),
+    (("--positions", "100000000000"), "--positions must be a whole number from 1 to"),
+])
+def test_more_bad_input(args, message):
+    code, out, err = run("table", "test-yoke", "--crank", "0.1", "--omega", "1", *args)
+    assert code == 2 and message in err
+
+
+def test_table_without_a_mechanism_is_an_error():
+    code, _, err = run("table")
+    assert code == 2 and "name a mechanism" in err and "test-yoke" in err
+
+
+def test_negative_pairs_with_exponents():
+    assert cli._join_negative_pairs(["--frame", "-3e-1,-1E-2"]) == ["--frame=-3e-1,-1E-2"]
+    assert cli._join_negative_pairs(["--frame", "-1e+1,0"]) == ["--frame=-1e+1,0"]

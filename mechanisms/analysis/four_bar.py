@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import AssemblyError
+from ..errors import AssemblyError, require_length
 from ..four_bar import FourBar, assembly_intervals
 from ..motion import PointMotion
 
@@ -67,7 +67,8 @@ def grashof_class(crank: float, coupler: float, rocker: float, frame: float,
     change point. If two links are equally shortest, the first in the order crank, frame,
     coupler, rocker names the class.
     """
-    lengths = {"crank": crank, "frame": frame, "coupler": coupler, "rocker": rocker}
+    lengths = {name: require_length(name, value)
+               for name, value in (("crank", crank), ("frame", frame), ("coupler", coupler), ("rocker", rocker))}
     ordered = sorted(lengths.values())
     margin = (ordered[1] + ordered[2]) - (ordered[0] + ordered[3])
     shortest = min(lengths, key=lengths.get)
