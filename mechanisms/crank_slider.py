@@ -124,8 +124,8 @@ class CrankSlider(Mechanism):
                                    angles=phi)
         except AssemblyError as error:
             ranges = self.assembly_ranges
-            reason = (f"the rod cannot reach the guide (rod = {self.rod:g} m < crank + |offset| = "
-                      f"{self.crank + abs(self.offset):g} m, so the crank cannot turn fully")
+            reason = (f"the rod cannot reach the guide (rod = {self.rod:.10g} m < crank + |offset| = "
+                      f"{self.crank + abs(self.offset):.10g} m, so the crank cannot turn fully")
             if len(ranges) > 1:
                 reason += f"; it assembles only for crank angles in {_describe_ranges(ranges)}, mod 360°"
             reason += ")"
