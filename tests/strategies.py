@@ -94,3 +94,17 @@ def slotted_lever_geometries(draw, kind: str = "any"):
     ratio = draw(st.floats(1.05, 5.0, **finite) if kind == "oscillating" else st.floats(0.0, 0.95, **finite))
     direction = draw(st.floats(-np.pi, np.pi, **finite))
     return crank, (ratio * crank * np.cos(direction), ratio * crank * np.sin(direction))
+
+# chapter 6 strategies -----------------------------------------------------------------
+
+link_mass_values = st.floats(0.1, 5.0, **finite)
+"""A mass, kg."""
+
+
+@st.composite
+def link_masses(draw, length: float):
+    """A link's mass properties with its centre of mass anywhere near a link of this length (m)."""
+    from mechanisms.analysis import energy
+    return energy.LinkMass(draw(link_mass_values), draw(st.floats(-0.3, 1.3, **finite)) * length,
+                           draw(st.floats(-0.5, 0.5, **finite)) * length, draw(st.floats(0.0, 0.5, **finite)))
+

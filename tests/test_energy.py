@@ -19,7 +19,7 @@ import mechanisms as mech
 from mechanisms.analysis import energy
 from mechanisms.errors import InvalidParameterError, MechanismError
 
-from strategies import crank_rockers, crank_slider_geometries, finite
+from strategies import crank_rockers, crank_slider_geometries, finite, link_masses
 
 SETTINGS = dict(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
@@ -28,11 +28,6 @@ inertias = st.floats(0.0, 0.5, **finite)
 offsets = st.floats(-0.5, 0.5, **finite)
 
 
-@st.composite
-def link_masses(draw, length: float) -> energy.LinkMass:
-    """A link's mass properties with its centre of mass anywhere near the link."""
-    return energy.LinkMass(draw(masses_), draw(st.floats(-0.3, 1.3, **finite)) * length,
-                           draw(offsets) * length, draw(inertias))
 
 
 @st.composite

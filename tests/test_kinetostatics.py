@@ -19,7 +19,7 @@ import mechanisms as mech
 from mechanisms.analysis import energy, kinetostatics
 from mechanisms.errors import InvalidParameterError, MechanismError
 
-from strategies import crank_rockers, crank_slider_geometries, finite
+from strategies import crank_rockers, crank_slider_geometries, finite, link_masses
 
 SETTINGS = dict(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
@@ -28,10 +28,6 @@ forces = st.builds(complex, st.floats(-500, 500, **finite), st.floats(-500, 500,
 torques = st.floats(-50.0, 50.0, **finite)
 
 
-@st.composite
-def link_masses(draw, length):
-    return energy.LinkMass(draw(masses_), draw(st.floats(-0.3, 1.3, **finite)) * length,
-                           draw(st.floats(-0.5, 0.5, **finite)) * length, draw(st.floats(0.0, 0.5, **finite)))
 
 
 @st.composite
