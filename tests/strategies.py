@@ -108,3 +108,28 @@ def link_masses(draw, length: float):
     return energy.LinkMass(draw(link_mass_values), draw(st.floats(-0.3, 1.3, **finite)) * length,
                            draw(st.floats(-0.5, 0.5, **finite)) * length, draw(st.floats(0.0, 0.5, **finite)))
 
+
+@st.composite
+def crank_slider_with_masses(draw):
+    """A crank-slider of random proportions with random masses: (mechanism, {link: LinkMass})."""
+    import mechanisms as mech
+    from mechanisms.analysis import energy
+    crank, rod, offset = draw(crank_slider_geometries())
+    masses = {"crank": draw(link_masses(crank)), "coupler": draw(link_masses(rod)),
+              "B": energy.LinkMass(draw(link_mass_values))}
+    return mech.CrankSlider(crank, rod, offset), masses
+
+
+@st.composite
+def four_bar_with_masses(draw):
+    """A crank-rocker of random proportions with random masses: (mechanism, {link: LinkMass})."""
+    import mechanisms as mech
+    crank, coupler, rocker, frame, branch = draw(crank_rockers())
+    masses = {"crank": draw(link_masses(crank)), "coupler": draw(link_masses(coupler)),
+              "rocker": draw(link_masses(rocker))}
+    return mech.FourBar(crank, coupler, rocker, frame, branch), masses
+
+
+crank_speeds = st.floats(0.5, 30.0, **finite).flatmap(lambda w: st.sampled_from([w, -w]))
+"""A crank speed of either sense, 1/s."""
+

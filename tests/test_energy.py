@@ -19,37 +19,12 @@ import mechanisms as mech
 from mechanisms.analysis import energy
 from mechanisms.errors import InvalidParameterError, MechanismError
 
-from strategies import crank_rockers, crank_slider_geometries, finite, link_masses
+from strategies import crank_slider_with_masses, crank_speeds, finite, four_bar_with_masses
 
 SETTINGS = dict(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
-masses_ = st.floats(0.1, 5.0, **finite)
-inertias = st.floats(0.0, 0.5, **finite)
-offsets = st.floats(-0.5, 0.5, **finite)
-
-
-
-
-@st.composite
-def crank_slider_cases(draw):
-    crank, rod, offset = draw(crank_slider_geometries())
-    m = mech.CrankSlider(crank, rod, offset)
-    masses = {"crank": draw(link_masses(crank)), "coupler": draw(link_masses(rod)),
-              "B": energy.LinkMass(draw(masses_))}
-    return m, masses
-
-
-@st.composite
-def four_bar_cases(draw):
-    crank, coupler, rocker, frame, branch = draw(crank_rockers())
-    m = mech.FourBar(crank, coupler, rocker, frame, branch)
-    masses = {"crank": draw(link_masses(crank)), "coupler": draw(link_masses(coupler)),
-              "rocker": draw(link_masses(rocker))}
-    return m, masses
-
-
-cases = st.one_of(crank_slider_cases(), four_bar_cases())
-speeds = st.floats(0.5, 30.0, **finite).flatmap(lambda w: st.sampled_from([w, -w]))
+cases = st.one_of(crank_slider_with_masses(), four_bar_with_masses())
+speeds = crank_speeds
 accelerations = st.floats(-50.0, 50.0, **finite)
 
 

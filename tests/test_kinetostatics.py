@@ -19,23 +19,18 @@ import mechanisms as mech
 from mechanisms.analysis import energy, kinetostatics
 from mechanisms.errors import InvalidParameterError, MechanismError
 
-from strategies import crank_rockers, crank_slider_geometries, finite, link_masses
+from strategies import crank_slider_with_masses, crank_speeds, finite, four_bar_with_masses
 
 SETTINGS = dict(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
-masses_ = st.floats(0.1, 5.0, **finite)
 forces = st.builds(complex, st.floats(-500, 500, **finite), st.floats(-500, 500, **finite))
 torques = st.floats(-50.0, 50.0, **finite)
 
 
-
-
 @st.composite
 def crank_slider_cases(draw):
-    crank, rod, offset = draw(crank_slider_geometries())
-    m = mech.CrankSlider(crank, rod, offset)
-    masses = {"crank": draw(link_masses(crank)), "coupler": draw(link_masses(rod)),
-              "B": energy.LinkMass(draw(masses_))}
+    m, masses = draw(crank_slider_with_masses())
+    rod = m.rod
     loads = [energy.Force("B", draw(forces)), energy.Force("coupler", draw(forces), 0.3 * rod, 0.1 * rod),
              energy.Torque("coupler", draw(torques))]
     springs = [energy.Spring("coupler", complex(rod, rod), 100.0, 0.5 * rod, along=0.5 * rod)]
@@ -44,18 +39,16 @@ def crank_slider_cases(draw):
 
 @st.composite
 def four_bar_cases(draw):
-    crank, coupler, rocker, frame, branch = draw(crank_rockers())
-    m = mech.FourBar(crank, coupler, rocker, frame, branch)
-    masses = {"crank": draw(link_masses(crank)), "coupler": draw(link_masses(coupler)),
-              "rocker": draw(link_masses(rocker))}
+    m, masses = draw(four_bar_with_masses())
+    coupler, rocker = m.coupler, m.rocker
     loads = [energy.Torque("rocker", draw(torques)), energy.Force("coupler", draw(forces), 0.5 * coupler, 0.2),
              energy.Force("rocker", draw(forces), rocker)]
-    springs = [energy.Spring("rocker", complex(*frame) + 1j * rocker, 100.0, 0.2, along=0.5 * rocker)]
+    springs = [energy.Spring("rocker", complex(*m.frame) + 1j * rocker, 100.0, 0.2, along=0.5 * rocker)]
     return m, masses, loads, springs
 
 
 cases = st.one_of(crank_slider_cases(), four_bar_cases())
-speeds = st.floats(0.5, 30.0, **finite).flatmap(lambda w: st.sampled_from([w, -w]))
+speeds = crank_speeds
 
 
 def _phi(count=12):

@@ -320,6 +320,18 @@ def test_lecture_angle_between_coupler_and_guide():
                                atol=1e-12)
 
 
+
+def _printed_distance_rates(r, r_t, r_tt):
+    """The lecture's printed rates of a distance |r| ("two rockers" slides: h and L_tek), as printed:
+    (·)_t = (x x_t + y y_t)/h and (·)_tt = −(·)_t (x x_t + y y_t)/h² + (x x_tt + y y_tt)/h + (x_t² + y_t²)/h."""
+    x, y = r.real, r.imag
+    length = np.sqrt(x**2 + y**2)
+    dot = x * r_t.real + y * r_t.imag
+    length_t = dot / length
+    length_tt = (-length_t * dot / length**2 + (x * r_tt.real + y * r_tt.imag) / length
+                 + (r_t.real**2 + r_t.imag**2) / length)
+    return length, length_t, length_tt
+
 def test_lecture_two_rockers_remaining_formulas():
     # Slides "two rockers with a slotted pair" 2 and 3 (those not in tests/test_slotted.py::test_two_rockers_lecture_formulas):
     # (y_t)_K = ξ_t (x_K − a)/cos²ξ + tg ξ (x_t)_K,
@@ -370,11 +382,7 @@ def test_lecture_two_rockers_remaining_formulas():
               + 2 * xi_t * k_t.real / c2 + np.tan(xi) * k_tt.real)
     np.testing.assert_allclose(y_k_t[regular], k_t.imag[regular], atol=1e-7)
     np.testing.assert_allclose(y_k_tt[regular], k_tt.imag[regular], atol=1e-3)
-    h = np.sqrt((x_k - m_) ** 2 + (y_k - n) ** 2)
-    dot_v = (x_k - m_) * k_t.real + (y_k - n) * k_t.imag
-    h_t = dot_v / h
-    h_tt = (-h_t * dot_v / h**2 + ((x_k - m_) * k_tt.real + (y_k - n) * k_tt.imag) / h
-            + (k_t.real**2 + k_t.imag**2) / h)
+    h, h_t, h_tt = _printed_distance_rates(k - o2, k_t, k_tt)
     np.testing.assert_allclose(h_t, dd1(lambda p: np.abs(foot(p) - o2)), atol=1e-7)
     np.testing.assert_allclose(h_tt, dd2(lambda p: np.abs(foot(p) - o2)), atol=1e-3)
     d = meet(phi)
@@ -389,11 +397,7 @@ def test_lecture_two_rockers_remaining_formulas():
     assert ok.sum() > 10
     np.testing.assert_allclose(x_d_t[ok], d_t.real[ok], rtol=1e-6, atol=1e-7)
     np.testing.assert_allclose(y_d_t[ok], d_t.imag[ok], atol=1e-7)
-    length = np.sqrt((x_d - a) ** 2 + (y_d - b) ** 2)
-    dot_d = (x_d - a) * d_t.real + (y_d - b) * d_t.imag
-    length_t = dot_d / length
-    length_tt = (-length_t * dot_d / length**2 + ((x_d - a) * d_tt.real + (y_d - b) * d_tt.imag) / length
-                 + (d_t.real**2 + d_t.imag**2) / length)
+    length, length_t, length_tt = _printed_distance_rates(d - o1, d_t, d_tt)
     np.testing.assert_allclose(length_t, dd1(lambda p: np.abs(meet(p) - o1)), atol=1e-7)
     np.testing.assert_allclose(length_tt, dd2(lambda p: np.abs(meet(p) - o1)), atol=1e-3)
     # the formulas can fail: without the velocity squares the second derivative is off
@@ -402,6 +406,7 @@ def test_lecture_two_rockers_remaining_formulas():
 
 
 # --- source 004, textbook page 31: Table 5.5 ---------------------------------------------------------
+
 
 def test_textbook_table_5_5_percentage_errors():
     # Table 5.5, row "error, %": (plans − analytical)/analytical·100 for ω2, ε2, v_C, a_C, v_S2, a_S2.
