@@ -29,6 +29,6 @@ from .slotted import RockerInBlock, Shaper, SliderOnCoupler, SlottedLever, Slott
 
 from . import verify  # noqa: E402  (layer 5, after the mechanisms it checks)
 from . import plot, plot_plans, present  # noqa: E402  (layer 6)
-from .present import difference, markdown_table  # noqa: E402
+from .present import difference, magnitude, markdown_table  # noqa: E402
 
 __version__ = "0.1.0"

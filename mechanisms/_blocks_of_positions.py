@@ -2,7 +2,7 @@
 
 A closed form is a chain of some dozens of array operations. Over a million positions each
 operation writes an array of 8–16 MB and the next one reads it back: far more than the
-processor's cache holds, so the chain waits on main memory. Over a block of some ten thousand
+processor's cache holds, so the chain waits on main memory. Over a block of some thirty thousand
 positions the temporaries stay in the cache, and the memory they use is reused by the next block;
 each block's results are copied once into the arrays over all positions. Every operation of the
 closed forms is elementwise, so the result is that of solving all positions at once, to round-off
@@ -18,74 +18,96 @@ import numpy as np
 
 from .base import Solution
 from .errors import AssemblyError
-from .motion import AngleMotion, Motion
+from .motion import AngleMotion, Motion, constant
 
 __all__ = ["BLOCK", "solve_in_blocks"]
 
-BLOCK = 8192
-"""Positions per block: a complex temporary of 8192 positions is 128 kB."""
+BLOCK = 32768
+"""Positions per block: a complex temporary of a block is 512 kB, and the some dozen that a
+closed form keeps at once fit in the processor's cache (the best of 4096 … 65536 in chapter 8)."""
 
 
 class _Gather:
-    """Arrays over all positions, filled block by block, shaped like the first block's solution."""
+    """Arrays over all positions, filled block by block, shaped like the first block's solution.
+
+    An array that a block shares with another (a joint's position and the end of a link) is
+    gathered once. A block's array that is a broadcast view of one number (a fixed pivot, a
+    constant crank speed) stays a broadcast view over all positions, as long as every block
+    holds the same number.
+    """
 
     def __init__(self, first: Solution, n: int):
         self.n = n
-        self._targets: dict[int, np.ndarray] = {}     # id of a block's array → the full array
-        self._zeros: set[int] = set()                  # full arrays that are still all zero
-        self._layout = self._walk(first, allocate=True)
+        self._slots: dict[int, int] = {}       # id of a first-block array → index in self._arrays
+        self._arrays: list[np.ndarray] = []
+        self._layout = self._walk(first)
 
-    def _target(self, array, allocate: bool):
+    def _slot(self, array) -> int | None:
         if array is None:
             return None
-        key = id(array)
-        if allocate and key not in self._targets:
+        if id(array) not in self._slots:
             array = np.asarray(array)
-            if array.any():
-                self._targets[key] = np.empty(self.n, dtype=array.dtype)
-            else:
-                # zeros (a fixed point's position at the origin, its velocity and acceleration): memory
-                # that the system hands out zeroed and that is written only if a block is not zero
-                self._targets[key] = np.zeros(self.n, dtype=array.dtype)
-                self._zeros.add(id(self._targets[key]))
-        return self._targets.get(key)
+            self._slots[id(array)] = len(self._arrays)
+            self._arrays.append(constant(array[0], (self.n,)) if _constant(array)
+                                else np.empty(self.n, dtype=array.dtype))
+        return self._slots[id(array)]
 
-    def _walk(self, part: Solution, allocate: bool = False):
+    @staticmethod
+    def _parts(part: Solution):
         motions = [("angle", name, part.angle(name)) for name in part.angle_names if name != "crank"]
         motions += [("point", name, part.point(name)) for name in part.point_names]
         motions += [("slider", name, part.slider(name)) for name in part.slider_names]
-        layout = [(kind, name, type(motion), [self._target(d, allocate) for d in motion.derivatives()])
-                  for kind, name, motion in motions]
-        extras = {joint: {key: self._target(value, allocate) for key, value in values.items()}
+        return motions
+
+    def _walk(self, part: Solution):
+        layout = [(kind, name, type(motion), [self._slot(d) for d in motion.derivatives()])
+                  for kind, name, motion in self._parts(part)]
+        extras = {joint: {key: self._slot(value) for key, value in values.items()}
                   for joint, values in part.extras.items()}
-        return layout, extras, self._target(part.singular, allocate)
+        return layout, extras, self._slot(part.singular)
 
     def store(self, part: Solution, where: slice) -> None:
-        motions = [part.angle(name) for name in part.angle_names if name != "crank"]
-        motions += [part.point(name) for name in part.point_names]
-        motions += [part.slider(name) for name in part.slider_names]
         layout, extras, singular = self._layout
-        for (_, _, _, targets), motion in zip(layout, motions):
-            for target, values in zip(targets, motion.derivatives()):
-                if target is not None:
-                    self._put(target, where, values)
+        for (_, _, _, slots), (_, _, motion) in zip(layout, self._parts(part)):
+            for slot, values in zip(slots, motion.derivatives()):
+                if slot is not None:
+                    self._put(slot, where, values)
         for joint, values in extras.items():
-            for key, target in values.items():
-                self._put(target, where, part.extras[joint][key])
+            for key, slot in values.items():
+                self._put(slot, where, part.extras[joint][key])
         self._put(singular, where, part.singular)
 
-    def _put(self, target: np.ndarray, where: slice, values: np.ndarray) -> None:
-        if id(target) in self._zeros and not values.any():
-            return
+    def _put(self, slot: int, where: slice, values: np.ndarray) -> None:
+        target = self._arrays[slot]
+        if _constant(target):
+            number = target[0]
+            if _constant(values) and _same(values[0], number):
+                return
+            # a number that changes from one block to the next: an array after all
+            self._arrays[slot] = np.empty(self.n, dtype=target.dtype)
+            self._arrays[slot][:where.start] = number
+            target = self._arrays[slot]
         target[where] = values
 
     def solution(self, crank: AngleMotion, order: int, links: dict[str, str]) -> Solution:
         layout, extras, singular = self._layout
+        array = self._arrays.__getitem__
         groups: dict[str, dict[str, Motion]] = {"angle": {"crank": crank}, "point": {}, "slider": {}}
-        for kind, name, cls, targets in layout:
-            groups[kind][name] = cls(*targets)
+        for kind, name, cls, slots in layout:
+            groups[kind][name] = cls(*(None if slot is None else array(slot) for slot in slots))
+        extras = {joint: {key: array(slot) for key, slot in values.items()} for joint, values in extras.items()}
         return Solution(crank.value, order, angles=groups["angle"], points=groups["point"], links=links,
-                        sliders=groups["slider"], extras=extras, singular=singular)
+                        sliders=groups["slider"], extras=extras, singular=array(singular))
+
+
+def _same(a, b) -> bool:
+    """Two numbers equal, or both not a number."""
+    return bool(a == b or (a != a and b != b))
+
+
+def _constant(array: np.ndarray) -> bool:
+    """True for a one-dimensional broadcast view of one number (a zero stride)."""
+    return array.ndim == 1 and array.strides[0] == 0 and array.size > 0
 
 
 def solve_in_blocks(solve: Callable[[AngleMotion, int], Solution], crank: AngleMotion, order: int,

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import math
 from typing import Sequence
 
-__all__ = ["MarkdownTable", "markdown_table", "difference"]
+__all__ = ["MarkdownTable", "markdown_table", "difference", "magnitude"]
 
 
 class MarkdownTable:
@@ -62,3 +63,16 @@ def difference(value: float, floor: float = 1e-12, unit: str = "") -> str:
     """
     text = f"< {floor:.0e}" if abs(value) < floor else f"{value:.1e}"
     return f"{text} {unit}".rstrip()
+
+
+def magnitude(value: float) -> str:
+    """The power of ten nearest to a round-off error, for people: ``"≈ 1e-10"`` for 4.8e-11.
+
+    An error made of rounding changes its digits with the order of floating-point operations, but
+    rarely its order of magnitude; chapter 8 compares such errors with estimates like ε/δ.
+    """
+    if value == 0.0:
+        return "0"
+    if not math.isfinite(value):
+        return str(value)
+    return f"≈ 1e{round(math.log10(abs(value)))}"

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+import mechanisms as mech
 from mechanisms.base import registry
 from mechanisms.errors import InvalidParameterError
 from mechanisms_for_tests import ScotchYoke
@@ -58,3 +59,27 @@ def test_point_on_rejects_non_finite_coordinates():
         sol.point_on("crank", np.nan)
     with pytest.raises(InvalidParameterError, match="left must be a finite number"):
         sol.point_on("crank", 0.1, np.inf)
+
+
+EVERY_MECHANISM = [mech.CrankSlider(0.08, 0.3, 0.02), mech.FourBar(1.0, 3.5, 3.0, (4.0, 0.0)),
+                   mech.LambdaMechanism(2.0, 6.5, 5.0), mech.SlottedLever(0.1, (0, 0.3)),
+                   mech.SlottedLever(0.1, (0, 0.1)), mech.RockerInBlock(2.0, (0, 4.0)),
+                   mech.Shaper(0.1, (0, -0.3), 0.5, 0.2, 0.2), mech.SlottedRockers(0.1, (0, 0.3), (0.1, 0.35), 0.2),
+                   mech.SliderOnCoupler(0.08, 0.3, (0.2, 0.1), 1.2)]
+
+
+@pytest.mark.parametrize("m", EVERY_MECHANISM, ids=lambda m: type(m).__name__)
+def test_one_crank_angle_given_as_a_number(m):
+    # expected: the same mechanism's solution of an array of angles, at the angle in question
+    phi = np.radians([10.0, 37.0, 100.0])
+    array = m.solve(phi, 2.0, 0.5)
+    for k, angle in enumerate(phi):
+        one = m.solve(angle, 2.0, 0.5)
+        pairs = [(one.angle(n), array.angle(n)) for n in array.angle_names]
+        pairs += [(one.point(n), array.point(n)) for n in array.point_names]
+        pairs += [(one.slider(n), array.slider(n)) for n in array.slider_names]
+        for single, many in pairs:
+            for u, v in zip(single.derivatives(), many.derivatives()):
+                assert np.ndim(u) == 0
+                np.testing.assert_allclose(u, np.asarray(v)[k], rtol=1e-13, atol=1e-15)
+        assert np.ndim(one.singular) == 0 and bool(one.singular) == bool(array.singular[k])

@@ -14,6 +14,7 @@ import pytest
 import mechanisms as mech
 from mechanisms._blocks_of_positions import BLOCK, solve_in_blocks
 from mechanisms.blocks.crank import crank_angle
+from mechanisms.motion import fixed_point
 from mechanisms.errors import AssemblyError, DeadCentreWarning
 
 N = 5 * BLOCK + 123          # several blocks and a short last one
@@ -80,3 +81,30 @@ def test_dead_centres_in_any_block_are_flagged():
         sol = m.solve(phi, omega=1.0)
     expected = np.isclose(np.sin(phi), 0.0, atol=1e-12)
     np.testing.assert_array_equal(sol.singular, expected)
+
+
+def test_fixed_pivots_stay_views_of_one_number():
+    # expected: the pivots O = 0 and C = (4, 0) m, at rest, at every position, without memory of their own
+    sol = mech.FourBar(1.0, 3.5, 3.0, (4.0, 0.0)).solve(np.linspace(0.0, 6.0, N), 1.0)
+    for name, where in (("O", 0j), ("C", 4 + 0j)):
+        for array, number in zip(sol.point(name).derivatives(), (where, 0j, 0j)):
+            assert array.shape == (N,) and array.strides == (0,)
+            np.testing.assert_array_equal(array, number)
+
+
+def test_a_number_that_changes_between_blocks_becomes_an_array():
+    # expected: a made-up solution whose point P is one number per block (a broadcast view), 0 in the
+    # first blocks and then 1 m: gathered, P must be 0 before the block that starts at φ ≥ 2.5 and 1 from it on
+    phi = np.linspace(0.0, 5.0, N)
+    starts = np.arange(0, N, BLOCK)
+    first_one = starts[np.argmax(phi[starts] >= 2.5)]
+
+    def solve(crank, order):
+        number = 1.0 + 0j if crank.value[0] >= 2.5 else 0j
+        point = mech.PointMotion(fixed_point(number, crank.value, 0).value)
+        return mech.Solution(crank.value, order, angles={"crank": crank}, points={"P": point}, links={})
+
+    sol = solve_in_blocks(solve, crank_angle(phi, 1.0, 0.0, 0), 0, {})
+    expected = np.where(np.arange(N) >= first_one, 1.0 + 0j, 0j)
+    np.testing.assert_array_equal(sol.point("P").value, expected)
+    assert 0 < first_one < N - BLOCK

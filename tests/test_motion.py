@@ -10,8 +10,8 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import mechanisms as mech
-from mechanisms.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point, plane_motion,
-                               point_on_link, polar, translated_point)
+from mechanisms.motion import (AngleMotion, Motion, PointMotion, angle_of, constant, fixed_point, lagrange_point,
+                               plane_motion, point_on_link, polar, translated_point, unit_vector)
 from strategies import angles, coordinates, lengths, points, rates
 
 T = np.linspace(0.0, 1.0, 11)
@@ -200,7 +200,39 @@ def test_motion_arithmetic_and_indexing():
 def test_fixed_point():
     p = fixed_point(1 + 2j, np.zeros(4))
     assert p.value.shape == (4,) and not p.velocity.any() and not p.acceleration.any()
+    np.testing.assert_array_equal(p.value, [1 + 2j] * 4)
     assert fixed_point(0j, np.zeros(2), order=0).order == 0
+
+
+def test_constant_is_a_read_only_view_of_one_number():
+    c = constant(2.5, (3, 4))
+    assert c.shape == (3, 4) and c.strides == (0, 0) and not c.flags.writeable
+    np.testing.assert_array_equal(c, np.full((3, 4), 2.5))
+    with pytest.raises(ValueError):
+        c[0, 0] = 1.0
+
+
+@pytest.mark.parametrize("span", [7.0, 1e3, 1e9, 1e300])
+@pytest.mark.parametrize("length", [1.0, -0.3, 1e-150])
+def test_unit_vector_from_the_half_angle_is_round_off(span, length):
+    # expected: cosine and sine in extended precision (64-bit mantissa), an independent evaluation
+    phi = np.random.default_rng(8).uniform(-span, span, 200_000)
+    phi[:4] = [0.0, np.pi, -np.pi / 2, np.nextafter(np.pi, 0.0)]
+    u = unit_vector(phi, length)
+    exact = np.longdouble(phi)
+    bound = 4e-16 * abs(length)
+    assert np.max(np.abs(u.real - length * np.cos(exact))) <= bound
+    assert np.max(np.abs(u.imag - length * np.sin(exact))) <= bound
+    assert unit_vector(np.float64(1.0), length) == pytest.approx(length * np.exp(1j), abs=bound)
+
+
+def test_angle_of_equals_numpys_angle():
+    # expected: np.angle, including the signs of zero and the axes
+    z = np.array([1 + 0j, -1 + 0j, complex(-1, -0.0), 1j, -1j, 0j, complex(0.0, -0.0), 3 - 4j])
+    z = np.concatenate([z, np.random.default_rng(9).normal(size=1000) + 1j * np.random.default_rng(10).normal(size=1000)])
+    np.testing.assert_array_equal(angle_of(z), np.angle(z))
+    np.testing.assert_array_equal(angle_of(z[::3]), np.angle(z[::3]))
+    assert angle_of(np.complex128(-1j)) == np.angle(-1j)
 
 
 def test_harmonic_law_against_hand_derivatives():

@@ -90,6 +90,13 @@ def test_difference_prints_round_off_as_a_bound():
     assert mech.difference(-5e-13, floor=1e-14) == "-5.0e-13"
 
 
+def test_magnitude_is_the_nearest_power_of_ten():
+    # expected by hand: log10(4.8e-11) = -10.32 and log10(3.6e-13) = -12.44 round to -10 and -12
+    assert mech.magnitude(4.8e-11) == "≈ 1e-10" and mech.magnitude(5.1e-11) == "≈ 1e-10"
+    assert mech.magnitude(-3.6e-13) == "≈ 1e-12" and mech.magnitude(12.0) == "≈ 1e1"
+    assert mech.magnitude(0.0) == "0" and mech.magnitude(float("inf")) == "inf"
+
+
 def test_paths_of_a_full_turn_are_closed():
     yoke = ScotchYoke(0.1)
     ax = plot.trajectories(yoke.solve(PHI, order=0), ["A"])

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import AssemblyError, require_branch, require_length
-from ..motion import AngleMotion, PointMotion
+from ..motion import AngleMotion, PointMotion, angle_of
 
 __all__ = ["Hinge", "hinge", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
 
@@ -58,9 +58,10 @@ class Hinge:
     singular: np.ndarray
 
 
-def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Scalar product of plane vectors given as complex numbers: Re(conj(u)·v)."""
-    return u.real * v.real + u.imag * v.imag
+def _cramer(conjugate: np.ndarray, rhs: np.ndarray, inverse_det: np.ndarray) -> np.ndarray:
+    """``(u · rhs)/det`` of Cramer's rule: the scalar product Re(conj(u)·rhs) of plane vectors given
+    as complex numbers (with ``conjugate`` = conj(u)), times ``inverse_det``."""
+    return np.multiply(conjugate, rhs).real * inverse_det
 
 
 def _assembly_failure(distance, shape, total: float, difference: float, tolerance: float, angles) -> None:
@@ -135,6 +136,10 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
         if not valid.all():
             require_branch(branch_array[~valid].ravel()[0].item())
         side = branch_array.astype(float)
+    if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:
+        # one position: solved as an array of one, returned as numbers
+        one = hinge(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles)
+        return Hinge(one.point[0], one.angle_p[0], one.angle_q[0], one.singular[0])
     order = min(p.order, q.order)
     d = q.value - p.value
     distance = np.abs(d)
@@ -142,25 +147,36 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     difference = abs(length_p - length_q)
     tolerance = ASSEMBLY_TOLERANCE * total
     # the extremes decide whether any position fails; the masks are made only then
-    shortest, longest = (distance.min(), distance.max()) if distance.size else (1.0, 0.0)
+    shortest, longest = (np.min(distance), np.max(distance)) if distance.size else (1.0, 0.0)
     if shortest <= tolerance * 1e-3 or shortest - difference < -tolerance or total - longest < -tolerance:
         _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
-    slack_far = np.maximum(total - distance, 0.0)       # ≥ 0: the links reach across (checked above)
-    slack_near = np.maximum(distance - difference, 0.0)  # ≥ 0: neither circle inside the other
-    # Heron's product, the two small factors near a limit computed directly: h·D. Two square roots
-    # of products of two lengths each keep it in range for lengths from 1e-150 m to 1e150 m.
-    height_distance = 0.5 * np.sqrt((total + distance) * slack_far) * np.sqrt(slack_near * (distance + difference))
-    inverse = 1.0 / distance
-    foot = 0.5 * (distance + (length_p - length_q) * (length_p + length_q) * inverse)   # m
-    # r_p = J − p = (m + i·branch·h)·d/D, with h = (h·D)/D
-    arm_p = d * (inverse * (foot + 1j * (side * height_distance * inverse)))
-    point = p.value + arm_p
-    arm_q = point - q.value                              # r_q = J − q
-    theta_p, theta_q = np.angle(arm_p), np.angle(arm_q)
+    # Heron's product h·D, its two small factors near a limit computed directly and clipped at
+    # zero against round-off (the limits were checked above); two square roots of products of
+    # two lengths each keep it in range for lengths from 1e-150 m to 1e150 m. twice = 2·h·D.
+    # The arrays are computed in place: fewer temporaries stay in the processor's cache (chapter 8).
+    far = np.subtract(total, distance)
+    np.maximum(far, 0.0, out=far)
+    scratch = np.add(distance, total)
+    far *= scratch
+    near = np.subtract(distance, difference)
+    np.maximum(near, 0.0, out=near)
+    near *= np.add(distance, difference, out=scratch)
+    twice = np.sqrt(far, out=far)
+    twice *= np.sqrt(near, out=near)
     # |sin| of the angle between the links is h·D/(L_p·L_q); the mask uses that ratio
-    singular = height_distance <= SINGULAR_TOLERANCE * length_p * length_q
-    if singular.shape != np.shape(point):
-        singular = np.broadcast_to(singular, np.shape(point)).copy()
+    singular = twice <= 2.0 * SINGULAR_TOLERANCE * length_p * length_q
+    # r_p = J − p = (m + i·branch·h)·d/D with m/D = (1 + (L_p² − L_q²)/D²)/2 and h/D = h·D/D²
+    inverse_square = np.divide(1.0, distance, out=near)
+    inverse_square *= inverse_square
+    arm_p = np.empty(d.shape, dtype=complex)
+    np.multiply(inverse_square, 0.5 * (length_p - length_q) * (length_p + length_q), out=arm_p.real)
+    arm_p.real += 0.5
+    np.multiply(twice, inverse_square, out=arm_p.imag)
+    arm_p.imag *= 0.5 * side
+    arm_p *= d
+    point = p.value + arm_p
+    arm_q = np.subtract(point, q.value, out=d)          # r_q = J − q (d is not needed any more)
+    theta_p, theta_q = angle_of(arm_p), angle_of(arm_q)
     if order == 0:
         return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
     any_singular = singular.any()
@@ -168,19 +184,29 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
         # Solve i·x·r_p − i·y·r_q = rhs for real x, y by Cramer's rule: dotting with r_q removes y,
         # with r_p removes x, so x = (r_q · rhs)/(r_p × r_q), y = (r_p · rhs)/(r_p × r_q). The
         # determinant r_p × r_q is branch·h·D of the geometry above, free of cancellation.
-        inverse_det = 1.0 / (side * height_distance)
+        inverse_det = np.divide(2.0 * side, twice, out=twice)
+        conjugate_p, conjugate_q = np.conjugate(arm_p), np.conjugate(arm_q)
         rhs = q.velocity - p.velocity
-        omega_p, omega_q = _dot(arm_q, rhs) * inverse_det, _dot(arm_p, rhs) * inverse_det
+        omega_p, omega_q = _cramer(conjugate_q, rhs, inverse_det), _cramer(conjugate_p, rhs, inverse_det)
         if any_singular:
-            omega_p = np.where(singular, np.nan, omega_p)
-            omega_q = np.where(singular, np.nan, omega_q)
-        velocity = p.velocity + 1j * omega_p * arm_p
+            np.copyto(omega_p, np.nan, where=singular)
+            np.copyto(omega_q, np.nan, where=singular)
+        velocity = 1j * omega_p
+        velocity *= arm_p
+        velocity += p.velocity                           # v_J = v_p + iω_p r_p
         if order == 1:
             return Hinge(PointMotion(point, velocity), AngleMotion(theta_p, omega_p),
                          AngleMotion(theta_q, omega_q), singular)
         square_p, square_q = omega_p * omega_p, omega_q * omega_q
-        rhs = q.acceleration - p.acceleration + square_p * arm_p - square_q * arm_q
-        alpha_p, alpha_q = _dot(arm_q, rhs) * inverse_det, _dot(arm_p, rhs) * inverse_det
-        acceleration = p.acceleration + (1j * alpha_p - square_p) * arm_p
+        rhs = square_p * arm_p
+        rhs -= square_q * arm_q
+        rhs += q.acceleration
+        rhs -= p.acceleration
+        alpha_p, alpha_q = _cramer(conjugate_q, rhs, inverse_det), _cramer(conjugate_p, rhs, inverse_det)
+        turn = np.empty(d.shape, dtype=complex)          # iα_p − ω_p²
+        np.negative(square_p, out=turn.real)
+        turn.imag = alpha_p
+        acceleration = np.multiply(turn, arm_p, out=turn)
+        acceleration += p.acceleration                   # a_J = a_p + (iα_p − ω_p²) r_p
     return Hinge(PointMotion(point, velocity, acceleration), AngleMotion(theta_p, omega_p, alpha_p),
                  AngleMotion(theta_q, omega_q, alpha_q), singular)

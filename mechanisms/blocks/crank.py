@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InvalidParameterError, require_order
-from ..motion import AngleMotion, PointMotion, point_on_link
+from ..motion import AngleMotion, PointMotion, constant, point_on_link
 
 __all__ = ["crank_angle", "crank_pin"]
 
@@ -23,6 +23,11 @@ def crank_angle(phi, omega, alpha=0.0, order: int = 2) -> AngleMotion:
         Angular acceleration φ_tt (rad/s²) at each position.
     order : int
         0, 1 or 2: how many time derivatives to keep.
+
+    Notes
+    -----
+    A constant ω or α is kept as a read-only view of one number
+    (:func:`~mechanisms.motion.constant`), which takes no memory.
     """
     order = require_order(order)
     phi = np.asarray(phi, dtype=float)
@@ -36,7 +41,9 @@ def crank_angle(phi, omega, alpha=0.0, order: int = 2) -> AngleMotion:
         value = np.asarray(value, dtype=float)
         if not np.all(np.isfinite(value)):
             raise InvalidParameterError(name, value.tolist(), "finite (rad/s or rad/s²)")
-        derivatives.append(np.broadcast_to(value, phi.shape).astype(float))
+        # a constant rate is a broadcast view of one number (no memory); an array is copied
+        derivatives.append(constant(float(value), phi.shape) if value.ndim == 0
+                           else np.broadcast_to(value, phi.shape).astype(float))
     return AngleMotion(phi, *derivatives)
 
 
