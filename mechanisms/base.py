@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import ClassVar, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .blocks.crank import crank_angle
 from .errors import DeadCentreWarning, describe_angles, require_finite, require_order
@@ -183,7 +184,7 @@ class Mechanism(ABC):
         if cls.cli_name:
             registry[cls.cli_name] = cls
 
-    def solve(self, phi, omega: float = 1.0, alpha: float = 0.0, order: int = 2) -> Solution:
+    def solve(self, phi: ArrayLike, omega: float = 1.0, alpha: float = 0.0, order: int = 2) -> Solution:
         """Kinematics over an array of crank angles.
 
         Parameters
@@ -228,7 +229,7 @@ class Mechanism(ABC):
         """The unknowns q (angles, slider positions) taken from a solution, in constraint order."""
 
     @abstractmethod
-    def constraints(self, q: Sequence, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         """Residuals of the constraint equations Φ(q, φ); zero when assembled.
 
         Written with numpy operations only (``+ - * /``, ``np.sin``, ``np.cos``, ``np.sqrt``),

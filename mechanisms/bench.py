@@ -34,6 +34,7 @@ import warnings
 from typing import Callable, Iterable, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .base import Mechanism, Solution
 from .crank_slider import CrankSlider
@@ -109,7 +110,8 @@ def _jacobian(constraints: Callable, q: Sequence[np.ndarray], phi: np.ndarray):
     return [[columns[0][0], columns[1][0]], [columns[0][1], columns[1][1]]], residual
 
 
-def reference(mechanism: Mechanism, phi, omega: float = OMEGA, alpha: float = 0.0, iterations: int = 3):
+def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha: float = 0.0,
+              iterations: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The coordinates q with q_t and q_tt in extended precision, from the constraint equations.
 
     Parameters
@@ -155,7 +157,7 @@ def reference(mechanism: Mechanism, phi, omega: float = OMEGA, alpha: float = 0.
     return np.array(q), np.array(q_t), np.array(q_tt)
 
 
-def jacobian_condition(mechanism: Mechanism, phi) -> np.ndarray:
+def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
     """The condition number of the constraint Jacobian Φ_q at the closed-form positions.
 
     Parameters
@@ -191,7 +193,8 @@ def _wrapped(difference: np.ndarray, angle: bool) -> np.ndarray:
     return (difference + np.pi) % (2.0 * np.pi) - np.pi
 
 
-def coordinate_errors(mechanism: Mechanism, q, q_t, q_tt, ref) -> tuple[float, float, float]:
+def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarray | None, q_tt: np.ndarray | None,
+                      ref: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[float, float, float]:
     """Largest errors of coordinates, velocities and accelerations against :func:`reference`.
 
     ``q``, ``q_t``, ``q_tt`` are arrays of shape (2, n) (or ``None`` if not computed); angles

@@ -8,15 +8,17 @@ circle–line block (:func:`~mechanisms.blocks.circle_line.slider_on_line`).
 from __future__ import annotations
 
 import math
+from typing import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._blocks_of_positions import solve_in_blocks
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from .blocks.circle_line import slider_on_line
 from .blocks.crank import crank_pin
 from .errors import AssemblyError, describe_range, require_branch, require_finite, require_length
-from .motion import AngleMotion, fixed_point
+from .motion import AngleMotion, Motion, fixed_point
 
 __all__ = ["CrankSlider", "assembly_ranges"]
 
@@ -136,7 +138,7 @@ class CrankSlider(Mechanism):
                         points={"O": pivot, "A": pin, "B": block.point}, links=self.links,
                         sliders={"B": block.travel}, singular=block.singular)
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         # the guide is drawn centred near the middle of the stroke
         return (Guide(complex(self.branch * self.rod, self.offset), 0.0), Ground("O"),
                 Bar("crank", ("O", "A"), "crank"), Bar("coupler", ("A", "B"), "coupler"), Block("B", 0.0))
@@ -144,11 +146,11 @@ class CrankSlider(Mechanism):
     def preserved_distances(self) -> dict[tuple[str, str], float]:
         return {("O", "A"): self.crank, ("A", "B"): self.rod}
 
-    def coordinates(self, solution: Solution):
+    def coordinates(self, solution: Solution) -> list[Motion]:
         """q = (ψ, s): the coupler angle and the slider's position."""
         return [solution.angle("coupler"), solution.slider("B")]
 
-    def constraints(self, q, phi):
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         """Φ = (L1 cos φ + L2 cos ψ − s, L1 sin φ + L2 sin ψ − e): the loop O→A→B closes on the guide."""
         psi, s = q
         return (self.crank * np.cos(phi) + self.rod * np.cos(psi) - s,

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = [
     "MechanismError",
@@ -17,6 +18,8 @@ __all__ = [
     "DeadCentreWarning",
     "require_length",
     "require_finite",
+    "require_positive",
+    "require_finite_array",
     "require_branch",
     "require_order",
     "describe_angles",
@@ -61,7 +64,7 @@ class AssemblyError(MechanismError, ValueError):
         The crank-angle interval (rad) in which the mechanism assembles, if known.
     """
 
-    def __init__(self, reason: str, angles=None, valid_range: tuple[float, float] | None = None):
+    def __init__(self, reason: str, angles: ArrayLike | None = None, valid_range: tuple[float, float] | None = None):
         self.reason = reason
         self.angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
         self.valid_range = valid_range
@@ -81,7 +84,7 @@ class DeadCentreWarning(UserWarning):
     """
 
 
-def describe_angles(angles, limit: int = 6) -> str:
+def describe_angles(angles: ArrayLike, limit: int = 6) -> str:
     """Return crank angles (rad) as a short list in degrees, for messages."""
     deg = np.degrees(np.atleast_1d(np.asarray(angles, dtype=float)))
     shown = ", ".join(f"{d:.6g}°" for d in deg[:limit])  # exact enough to find the position again
@@ -105,24 +108,42 @@ def describe_range(low: float, high: float) -> str:
     return f"[{math.degrees(low):.2f}°, {math.degrees(high):.2f}°]"
 
 
-def require_finite(name: str, value) -> float:
+def require_finite(name: str, value: object) -> float:
     """Return ``value`` as float, or raise :class:`InvalidParameterError` if it is not finite."""
     return _number(name, value, "a finite number", positive=False)
 
 
-def require_length(name: str, value) -> float:
+def require_positive(name: str, value: object, unit: str = "") -> float:
+    """Return ``value`` as float, or raise if it is not a finite number > 0 (in ``unit``)."""
+    return _number(name, value, f"a finite number > 0{' ' + unit if unit else ''}", positive=True)
+
+
+def require_finite_array(name: str, values: ArrayLike, unit: str = "") -> np.ndarray:
+    """Return ``values`` as an array of floats, or raise naming (up to three of) those that are not finite."""
+    try:
+        array = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, values, "numbers") from None
+    bad = ~np.isfinite(array)
+    if bad.any():
+        shown = array[bad][:3].tolist() if array.ndim else array.item()
+        raise InvalidParameterError(name, shown, f"finite{' (' + unit + ')' if unit else ''}")
+    return array
+
+
+def require_length(name: str, value: object) -> float:
     """Return ``value`` as float, or raise if it is not a finite length > 0 (m)."""
     return _number(name, value, "a finite length > 0 m", positive=True)
 
 
-def require_branch(value, name: str = "branch") -> int:
+def require_branch(value: object, name: str = "branch") -> int:
     """Return the branch as int +1 or -1, or raise :class:`InvalidParameterError`."""
     if value in (1, -1) and not isinstance(value, bool):
         return int(value)
     raise InvalidParameterError(name, value, "+1 or -1")
 
 
-def require_order(value) -> int:
+def require_order(value: object) -> int:
     """Return the derivative order as int 0, 1 or 2, or raise."""
     if value in (0, 1, 2) and not isinstance(value, bool):
         return int(value)

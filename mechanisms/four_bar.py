@@ -19,9 +19,10 @@ import math
 from typing import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._blocks_of_positions import solve_in_blocks
-from .base import Bar, Ground, Mechanism, Parameter, Solution
+from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from .blocks.circle_circle import hinge
 from .blocks.crank import crank_pin
 from .errors import (AssemblyError, InvalidParameterError, describe_range, require_branch, require_finite,
@@ -53,7 +54,7 @@ def _pqf(phi, crank: float, coupler: float, rocker: float, frame: tuple[float, f
     return p, q, f
 
 
-def half_angle_coupler_angle(phi, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
+def half_angle_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
                              branch: int = 1) -> np.ndarray:
     """The coupler angle ψ by the lecture's half-angle formula, as printed (for comparison).
 
@@ -86,7 +87,7 @@ def half_angle_coupler_angle(phi, crank: float, coupler: float, rocker: float, f
     return 2.0 * np.arctan(t)
 
 
-def stable_coupler_angle(phi, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
+def stable_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
                          branch: int = 1) -> np.ndarray:
     """The coupler angle ψ in stable form: ``ψ = atan2(Q, P) + branch·atan2(√(R² − F²), F)``.
 
@@ -105,7 +106,8 @@ def stable_coupler_angle(phi, crank: float, coupler: float, rocker: float, frame
     return np.angle(np.exp(1j * psi))
 
 
-def cramer_rates(phi, psi, xi, crank: float, coupler: float, rocker: float, omega, alpha=0.0):
+def cramer_rates(phi: ArrayLike, psi: ArrayLike, xi: ArrayLike, crank: float, coupler: float, rocker: float,
+                 omega: ArrayLike, alpha: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Angular velocities and accelerations of coupler and rocker by Cramer's rule (lecture).
 
     Parameters
@@ -310,7 +312,7 @@ class FourBar(Mechanism):
         """Crank angles (rad) of the change points the crank passes (empty for most linkages)."""
         return change_point_angles(self.crank, self.coupler, self.rocker, self.frame)
 
-    def sides(self, phi) -> np.ndarray:
+    def sides(self, phi: ArrayLike) -> np.ndarray:
         """The geometric side (+1/−1) of B relative to A → C at each crank angle (continuation rule)."""
         phi = np.asarray(phi, dtype=float)
         if self.keep_side:
@@ -348,7 +350,7 @@ class FourBar(Mechanism):
                         points={"O": origin, "A": pin, "B": joint.point, "C": pivot},
                         links=self.links, singular=joint.singular)
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         return [Ground("O"), Ground("C"), Bar("crank", ("O", "A"), "crank"),
                 Bar("coupler", ("A", "B"), "coupler"), Bar("rocker", ("C", "B"), "rocker")]
 
@@ -359,7 +361,7 @@ class FourBar(Mechanism):
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("coupler"), solution.angle("rocker")]
 
-    def constraints(self, q: Sequence, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         psi, xi = q
         a, b = self.frame
         return (self.crank * np.cos(phi) + self.coupler * np.cos(psi) - self.rocker * np.cos(xi) - a,

@@ -11,6 +11,7 @@ round-off, without finite differences. This is what makes the generic solver of
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["Jet"]
 
@@ -26,7 +27,7 @@ class Jet:
 
     __array_priority__ = 100  # numpy arrays defer to Jet in mixed arithmetic
 
-    def __init__(self, f, d1=0.0, d2=0.0):
+    def __init__(self, f: ArrayLike, d1: ArrayLike = 0.0, d2: ArrayLike = 0.0):
         self.f, self.d1, self.d2 = f, d1, d2
 
     # arithmetic --------------------------------------------------------------
@@ -55,7 +56,7 @@ class Jet:
 
     __rmul__ = __mul__
 
-    def reciprocal(self):
+    def reciprocal(self) -> Jet:
         """``1/f`` with its derivatives."""
         inv = 1.0 / self.f
         return Jet(inv, -self.d1 * inv**2, (2.0 * self.d1**2 * inv - self.d2) * inv**2)

@@ -11,8 +11,9 @@ from __future__ import annotations
 from typing import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .base import Bar, Ground, Mechanism, Parameter, Solution
+from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from .errors import AssemblyError, require_branch, require_length
 from .four_bar import FourBar
 from .motion import AngleMotion, Motion, point_on_link
@@ -74,7 +75,7 @@ class LambdaMechanism(Mechanism):
                                 "D": inner.point("C")},
                         links=self.links, singular=inner.singular)
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         return [Ground("O"), Ground("D"), Bar("crank", ("O", "A"), "crank"),
                 Bar("coupler", ("A", "C", "B"), "coupler"), Bar("rocker", ("D", "C"), "rocker")]
 
@@ -86,7 +87,7 @@ class LambdaMechanism(Mechanism):
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("coupler"), solution.angle("rocker")]
 
-    def constraints(self, q: Sequence, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         psi, epsilon = q
         r, b, d = self.crank, self.half_coupler, self.ground
         return (r * np.cos(phi) + b * np.cos(psi) - b * np.cos(epsilon) + d,

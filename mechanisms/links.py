@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .motion import Motion
 
@@ -52,7 +53,7 @@ def link_type(name: str) -> LinkType:
     raise KeyError(f"no link type {name!r}; known: {', '.join(t.name for t in LINK_TYPES)}")
 
 
-def harmonic(mean: float, amplitude: float, frequency: float, t, phase: float = 0.0) -> Motion:
+def harmonic(mean: float, amplitude: float, frequency: float, t: ArrayLike, phase: float = 0.0) -> Motion:
     """A harmonic law ``q = mean + amplitude·sin(frequency·t + phase)`` with its derivatives.
 
     Parameters

@@ -37,7 +37,7 @@ __all__ = [
 ArrayLike = Union[float, complex, np.ndarray]
 
 
-def unit_vector(angle, length: float = 1.0) -> np.ndarray:
+def unit_vector(angle: ArrayLike, length: float = 1.0) -> np.ndarray:
     """``length·exp(iθ) = length·(cos θ + i sin θ)`` (complex), from the tangent of the half angle.
 
     With ``t = tan(θ/2)``: ``exp(iθ) = (1 − t² + 2it)/(1 + t²)``. numpy evaluates the tangent in
@@ -62,7 +62,7 @@ def unit_vector(angle, length: float = 1.0) -> np.ndarray:
     return out
 
 
-def angle_of(z) -> np.ndarray:
+def angle_of(z: ArrayLike) -> np.ndarray:
     """The angle of plane vectors ``z = x + iy`` (rad, in (−π, π]): ``np.angle(z)``.
 
     Equal to ``np.angle``; for complex arrays it takes ``atan2`` of contiguous copies of the

@@ -8,7 +8,7 @@ lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors 
 from __future__ import annotations
 
 import re
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
 import matplotlib
 
@@ -19,6 +19,9 @@ from matplotlib.patches import Polygon, Rectangle
 
 from .base import Bar, Block, Ground, Guide, Mechanism, Solution
 from .motion import PointMotion
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "ROLE_COLOURS",
@@ -125,9 +128,9 @@ def _extent(solution: Solution) -> float:
     return float(span) or 1.0
 
 
-def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labels: bool = True,
+def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | None = None, labels: bool = True,
          size: float | None = None, guide_half_length: float | None = None,
-         label_offset: tuple[float, float] = (5.0, 5.0)):
+         label_offset: tuple[float, float] = (5.0, 5.0)) -> Axes:
     """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
 
     Parameters
@@ -180,7 +183,7 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax=None, labe
     return ax
 
 
-def annotate_angle(ax, vertex: complex, start: float, stop: float, label: str, radius: float,
+def annotate_angle(ax: Axes, vertex: complex, start: float, stop: float, label: str, radius: float,
                    colour: str = "0.25") -> None:
     """Mark an angle on a drawing: an arc from ``start`` to ``stop`` (rad) about ``vertex``, labelled.
 
@@ -198,13 +201,13 @@ def annotate_angle(ax, vertex: complex, start: float, stop: float, label: str, r
     ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11, color=colour)
 
 
-def annotate_length(ax, first: complex, second: complex, label: str, offset: float) -> None:
+def annotate_length(ax: Axes, first: complex, second: complex, label: str, offset: float) -> None:
     """Write a length's symbol beside the segment first–second, ``offset`` m to its left."""
     middle = 0.5 * (first + second) + offset * 1j * np.exp(1j * np.angle(second - first))
     ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11)
 
 
-def annotate_dimension(ax, start: complex, end: complex, label: str, both: bool = True,
+def annotate_dimension(ax: Axes, start: complex, end: complex, label: str, both: bool = True,
                        offset: float = 0.0) -> None:
     """A dimension arrow from ``start`` to ``end`` (m) with its symbol beside the middle.
 
@@ -219,8 +222,8 @@ def annotate_dimension(ax, start: complex, end: complex, label: str, both: bool 
     ax.text(where.real, where.imag, label, ha="center", va="center", fontsize=11)
 
 
-def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[int] | None = None, ax=None,
-                   paths: dict[str, PointMotion] | None = None, **draw_options):
+def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[int] | None = None,
+                   ax: Axes | None = None, paths: dict[str, PointMotion] | None = None, **draw_options) -> Axes:
     """A family of positions: the mechanism drawn at several crank angles, over point paths.
 
     Parameters
@@ -254,8 +257,8 @@ def _full_turn(phi: np.ndarray) -> bool:
     return bool(np.allclose(step, step[0]) and abs(abs(phi[-1] - phi[0] + step[0]) - 2 * np.pi) < 1e-9)
 
 
-def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Sequence[str], ax=None,
-                 colours: Iterable[str] | None = None):
+def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Sequence[str], ax: Axes | None = None,
+                 colours: Iterable[str] | None = None) -> Axes:
     """Draw the paths of points: named joints of the solution or given point motions.
 
     Parameters
@@ -279,8 +282,8 @@ def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Seq
     return ax
 
 
-def vectors_along(motion: PointMotion, every: int = 1, ax=None, scale_velocity: float | None = None,
-                  scale_acceleration: float | None = None, velocity: bool = True, acceleration: bool = True):
+def vectors_along(motion: PointMotion, every: int = 1, ax: Axes | None = None, scale_velocity: float | None = None,
+                  scale_acceleration: float | None = None, velocity: bool = True, acceleration: bool = True) -> Axes:
     """Velocity and acceleration vectors drawn at points of a trajectory.
 
     The vectors are scaled so that the longest is 15 % of the path's extent unless scales
@@ -301,8 +304,8 @@ def vectors_along(motion: PointMotion, every: int = 1, ax=None, scale_velocity: 
     return ax
 
 
-def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax=None, step_deg: int = 30,
-            colours: Iterable[str] | None = None, angle_symbol: str = "φ"):
+def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axes | None = None, step_deg: int = 30,
+            colours: Iterable[str] | None = None, angle_symbol: str = "φ") -> Axes:
     """Quantities against the crank angle (degrees, ticks every ``step_deg``).
 
     Parameters
@@ -408,8 +411,8 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dic
     return _to_html(fig, frame, len(chosen), interval)
 
 
-def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax=None, every: int = 1,
-                   paths: bool = True):
+def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax: Axes | None = None, every: int = 1,
+                   paths: bool = True) -> Axes:
     """A link drawn as a bar between two of its points at several instants, faded in time order.
 
     Parameters

@@ -9,7 +9,7 @@ vectors and components have the colour of the link whose motion they describe
 
 from __future__ import annotations
 
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -18,6 +18,10 @@ from matplotlib.patches import Polygon
 from .analysis.plans import AccelerationPlan, InstantCentres, Plan, VelocityPlan
 from .base import Mechanism, Solution
 from .plot import ACCELERATION_COLOUR, ROLE_COLOURS, VELOCITY_COLOUR, draw
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["LINK_ROLES", "draw_plan", "draw_plans", "draw_instant_centres", "draw_centre_velocities"]
 
@@ -45,8 +49,8 @@ def _arrow(ax, tail: complex, head: complex, colour: str, style: str, width: flo
                             "shrinkA": 0, "shrinkB": 0, "mutation_scale": 12}, zorder=zorder)
 
 
-def draw_plan(plan: Plan, ax=None, names: bool = True, images: bool = True, title: str | None = None,
-              label_offset: float = 3.5):
+def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bool = True, title: str | None = None,
+              label_offset: float = 3.5) -> Axes:
     """Draw a velocity or acceleration plan to scale, in mm of the drawing.
 
     Parameters
@@ -129,7 +133,8 @@ def draw_plan(plan: Plan, ax=None, names: bool = True, images: bool = True, titl
 
 
 def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
-               acceleration: AccelerationPlan | None = None, index: int = 0, figsize=None):
+               acceleration: AccelerationPlan | None = None, index: int = 0,
+               figsize: tuple[float, float] | None = None) -> tuple[Figure, list[Axes]]:
     """The mechanism at a position beside its velocity plan (and its acceleration plan).
 
     Returns
@@ -163,7 +168,7 @@ def _extend(ax, first: complex, second: complex, beyond: float = 0.15) -> None:
 
 
 def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: InstantCentres, index: int = 0,
-                         ax=None, lines: bool = True, arrow_length: float | None = None):
+                         ax: Axes | None = None, lines: bool = True, arrow_length: float | None = None) -> Axes:
     """The mechanism with all its instant centres P_ij, and Kennedy's lines that locate P02 and P13.
 
     Parameters
@@ -218,8 +223,8 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
     return ax
 
 
-def draw_centre_velocities(ax, centre: complex, positions: Mapping[str, complex], velocities: Mapping[str, complex],
-                           scale: float):
+def draw_centre_velocities(ax: Axes, centre: complex, positions: Mapping[str, complex],
+                           velocities: Mapping[str, complex], scale: float) -> Axes:
     """Velocities of a link's points drawn at the points, with the rays from the link's instant centre.
 
     Parameters

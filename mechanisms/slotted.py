@@ -23,6 +23,7 @@ import math
 from typing import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._blocks_of_positions import solve_in_blocks
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
@@ -123,7 +124,7 @@ class SlottedLever(Mechanism):
         return Solution(crank.value, order, angles={"crank": crank, "lever": xi}, points=points, links=self.links,
                         sliders={"A": block.distance}, extras=extras, singular=block.singular)
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         lever_joints = ("E", "B") if self.kind == "through pivot" else ("C", "B")
         return [Ground("O"), Ground("C"), Bar("lever", lever_joints, "lever"), Bar("crank", ("O", "A"), "crank"),
                 Block("A", "lever")]
@@ -134,7 +135,7 @@ class SlottedLever(Mechanism):
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("lever"), solution.slider("A")]
 
-    def constraints(self, q, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         xi, s = q
         a, b = self.pivot
         return (self.crank * np.cos(phi) - a - s * np.cos(xi),
@@ -196,7 +197,7 @@ class RockerInBlock(Mechanism):
         return Solution(crank.value, order, angles={"crank": crank, "rocker": psi}, points=points, links=self.links,
                         sliders={"B": block.distance}, extras=extras, singular=block.singular)
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         return [Ground("O"), Ground("B"), Bar("rocker", ("C", "D"), "rocker"), Bar("crank", ("O", "A"), "crank"),
                 Block("B", "rocker")]
 
@@ -206,7 +207,7 @@ class RockerInBlock(Mechanism):
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("rocker"), solution.slider("B")]
 
-    def constraints(self, q, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         psi, t = q
         a, b = self.pivot
         return (self.crank * np.cos(phi) + t * np.cos(psi) - a,
@@ -279,7 +280,7 @@ class Shaper(Mechanism):
                         points=points, links=self.links, sliders={"A": base.slider("A"), "D": ram.travel},
                         extras=base.extras, singular=base.singular | ram.singular)
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         return [Ground("O"), Ground("C"), Guide(1j * self.ram_height, 0.0), Bar("lever", ("C", "B"), "lever"),
                 Bar("crank", ("O", "A"), "crank"), Bar("rod", ("B", "D"), "coupler"), Block("A", "lever"),
                 Block("D", 0.0)]
@@ -290,7 +291,7 @@ class Shaper(Mechanism):
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("lever"), solution.slider("A"), solution.angle("rod"), solution.slider("D")]
 
-    def constraints(self, q, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         xi, s, psi, x = q
         a, b = self.pivot
         return (self.crank * np.cos(phi) - a - s * np.cos(xi),
@@ -372,7 +373,7 @@ class SlottedRockers(Mechanism):
         """K, the foot of the perpendicular from O₂ on the lever's line (m, m/s, m/s²)."""
         return distance_to_line(complex(*self.rocker_pivot), complex(*self.pivot), solution.angle("lever")).foot
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         return [Ground("O"), Ground("O1"), Ground("O2"), Bar("lever", ("O1", "B"), "lever"),
                 Bar("crank", ("O", "A"), "crank"), Bar("rocker", ("O2", "D"), "rocker"), Block("A", "lever"),
                 Block("D", "lever")]
@@ -383,7 +384,7 @@ class SlottedRockers(Mechanism):
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("lever"), solution.slider("A"), solution.angle("rocker"), solution.slider("D")]
 
-    def constraints(self, q, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         xi, s, theta, t = q
         a, b = self.pivot
         m, n = self.rocker_pivot
@@ -461,7 +462,7 @@ class SliderOnCoupler(Mechanism):
         h = distance_to_line(solution.point("A"), 1j * self.offset, 0.0).distance
         return angle_from_distance(h, self.rod)
 
-    def scheme(self):
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         x0, y0 = self.guide_point
         return [Ground("O"), Guide(complex(self.rod, self.offset), 0.0), Guide(complex(x0, y0), self.guide_angle),
                 Bar("crank", ("O", "A"), "crank"), Bar("coupler", ("A", "B", "L"), "coupler"), Block("B", 0.0),
@@ -473,7 +474,7 @@ class SliderOnCoupler(Mechanism):
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("coupler"), solution.slider("B"), solution.slider("L_coupler"), solution.slider("L")]
 
-    def constraints(self, q, phi) -> tuple:
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         psi, x, t, g = q
         x0, y0 = self.guide_point
         c, s = math.cos(self.guide_angle), math.sin(self.guide_angle)

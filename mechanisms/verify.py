@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Callable, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .base import Mechanism, Solution
 from .errors import AssemblyError, require_order
@@ -115,7 +116,8 @@ def _continue(constraints, guess, phi, tol, max_iter, max_step):
     return q, iterations
 
 
-def solve_constraints(constraints: Constraints, guess, phi, omega=1.0, alpha=0.0, order: int = 2,
+def solve_constraints(constraints: Constraints, guess: ArrayLike, phi: ArrayLike, omega: ArrayLike = 1.0,
+                      alpha: ArrayLike = 0.0, order: int = 2,
                       tol: float = 1e-13, max_iter: int = 50, max_step: float = np.radians(2.0)) -> GenericSolution:
     """Solve the constraint equations Φ(q, φ) = 0 by Newton's method, with exact derivatives.
 
@@ -175,7 +177,8 @@ def solve_constraints(constraints: Constraints, guess, phi, omega=1.0, alpha=0.0
     return GenericSolution(q, q_t, q_tt, iterations, float(np.max(np.abs(residual))))
 
 
-def newton_history(constraints: Constraints, guess, phi, steps: int = 6) -> list[tuple[np.ndarray, float]]:
+def newton_history(constraints: Constraints, guess: ArrayLike, phi: ArrayLike,
+                   steps: int = 6) -> list[tuple[np.ndarray, float]]:
     """Newton's iterations one by one, for teaching: ``[(q, largest |Φ|), …]`` from the guess on.
 
     Parameters
@@ -199,7 +202,8 @@ def newton_history(constraints: Constraints, guess, phi, steps: int = 6) -> list
     return history
 
 
-def solve_generic(mechanism: Mechanism, phi, omega=1.0, alpha=0.0, order: int = 2, guess=None,
+def solve_generic(mechanism: Mechanism, phi: ArrayLike, omega: ArrayLike = 1.0, alpha: ArrayLike = 0.0,
+                  order: int = 2, guess: ArrayLike | None = None,
                   tol: float = 1e-13) -> GenericSolution:
     """Solve a mechanism's own constraint equations with :func:`solve_constraints`.
 
@@ -217,7 +221,7 @@ def _wrap(angle_difference: np.ndarray) -> np.ndarray:
     return (angle_difference + np.pi) % (2.0 * np.pi) - np.pi
 
 
-def central_difference(function: Callable[[np.ndarray], np.ndarray], phi, omega: float, step: float = 1e-4,
+def central_difference(function: Callable[[np.ndarray], np.ndarray], phi: ArrayLike, omega: float, step: float = 1e-4,
                        derivative: int = 1, angle: bool = False) -> np.ndarray:
     """Numerical time derivative of a function of the crank angle, at constant ω.
 
@@ -264,7 +268,7 @@ def distance_deviation(mechanism: Mechanism, solution: Solution) -> float:
                      for (a, b), length in mechanism.preserved_distances().items()))
 
 
-def derivative_errors(mechanism: Mechanism, phi, omega: float, step: float = 1e-5,
+def derivative_errors(mechanism: Mechanism, phi: ArrayLike, omega: float, step: float = 1e-5,
                       step2: float = 1e-4) -> dict[str, tuple[float, float]]:
     """Largest difference between exact derivatives and numerical differentiation.
 
@@ -295,7 +299,7 @@ def derivative_errors(mechanism: Mechanism, phi, omega: float, step: float = 1e-
     return result
 
 
-def generic_errors(mechanism: Mechanism, phi, omega: float = 1.0, alpha: float = 0.0,
+def generic_errors(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alpha: float = 0.0,
                    tol: float = 1e-14) -> tuple[float, float, float]:
     """Largest difference of the closed form's coordinates from the generic solver's.
 

@@ -223,3 +223,15 @@ def test_source_002_limiting_geometries(offset, rod):
     # the other continuation through the same position is branch −1: there the velocity is smooth
     other = mech.CrankSlider(r, rod, offset, -1).solve(np.pi / 2 + np.array([delta]), w)
     np.testing.assert_allclose(other.slider("B").velocity, [-r * w - jump], rtol=1e-3)
+
+
+def test_bad_input_of_the_helpers_names_the_parameter():
+    m = mech.CrankSlider(0.08, 0.3)
+    with pytest.raises(mech.InvalidParameterError, match="phi must be finite"):
+        analysis.approximate_slider(m, [0.0, np.nan])
+    with pytest.raises(mech.InvalidParameterError, match="omega"):
+        analysis.approximate_slider(m, [0.0, 1.0], np.inf)
+    with pytest.raises(mech.InvalidParameterError, match="omega"):
+        analysis.slider_extremes(m, 0.0)
+    with pytest.raises(mech.InvalidParameterError, match="samples"):
+        analysis.slider_extremes(m, 1.0, samples=2)

@@ -153,3 +153,22 @@ def test_bad_simulation_input_raises():
         dynamics.simulate(CRANK_SLIDER, MASSES, 1.0, duration=-1.0, steps=10)
     with pytest.raises(InvalidParameterError, match="steps"):
         dynamics.simulate(CRANK_SLIDER, MASSES, 1.0, duration=1.0, steps=0)
+
+
+def test_bad_flywheel_input_names_the_parameter():
+    with pytest.raises(InvalidParameterError, match="torque"):
+        dynamics.energy_swing([0.0, 1.0, 2.0], [1.0, 2.0])            # one torque missing
+    with pytest.raises(InvalidParameterError, match="torque must be finite"):
+        dynamics.energy_swing([0.0, 1.0, 2.0], [1.0, np.nan, 2.0])
+    with pytest.raises(InvalidParameterError, match="phi"):
+        dynamics.energy_swing([0.0, 2.0, 1.0], [1.0, 2.0, 3.0])       # not increasing
+    with pytest.raises(InvalidParameterError, match="torque"):
+        dynamics.energy_swing([0.0], [1.0])                             # no period at all
+    with pytest.raises(InvalidParameterError, match="mean_speed"):
+        dynamics.flywheel_inertia(10.0, -5.0, 0.02)
+    with pytest.raises(InvalidParameterError, match="coefficient"):
+        dynamics.flywheel_inertia(10.0, 5.0, 0.0)
+    with pytest.raises(InvalidParameterError, match="swing"):
+        dynamics.flywheel_inertia(np.nan, 5.0, 0.02)
+    # by hand: J = ΔE/(δ ω_m²) = 10/(0.02·25) = 20 kg·m²
+    assert dynamics.flywheel_inertia(10.0, 5.0, 0.02) == pytest.approx(20.0)

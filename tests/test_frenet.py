@@ -306,3 +306,13 @@ def test_gamma_and_tangent_angle_by_hand():
     assert np.allclose(law.phi_s, 0.5 / 2.0 - 0.5)  # θ' = θ_t/(ωr) = 0.25, minus k
     # the point ρ = 1: A = (2, 0), one metre along −x: (1, 0)
     assert np.allclose(law.position(1.0), 1.0 + 0j)
+
+
+def test_closed_forms_reject_what_has_no_linkage():
+    with pytest.raises(mech.InvalidParameterError, match="s must be finite"):
+        frenet.crank_slider_law([0.0, np.nan], 10.0, 0.3)
+    # r = 0.1 m and a rod of 0.01 m: the pin is farther than the rod from the guide y = 0 except near ψ = 0, π
+    with pytest.raises(mech.AssemblyError, match="rod cannot reach"):
+        frenet.crank_slider_law([0.0, 0.1], 10.0, 0.01)
+    with pytest.raises(mech.InvalidParameterError, match="s must be finite"):
+        frenet.rocker_in_block_law([np.inf], 1.0)

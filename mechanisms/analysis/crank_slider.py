@@ -11,9 +11,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..crank_slider import CrankSlider
-from ..errors import AssemblyError
+from ..errors import AssemblyError, InvalidParameterError, require_finite, require_finite_array
 from ..motion import Motion
 
 __all__ = [
@@ -210,6 +211,11 @@ def slider_extremes(mechanism: CrankSlider, omega: float = 1.0, samples: int = 7
     The velocity is extreme where the acceleration vanishes, which has no closed form for the exact
     mechanism; the search uses the exact closed-form velocities and accelerations.
     """
+    omega = require_finite("omega", omega)
+    if omega == 0.0:
+        raise InvalidParameterError("omega", omega, "a crank speed other than 0 rad/s (at rest there are no extremes)")
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 8:
+        raise InvalidParameterError("samples", samples, "a whole number ≥ 8 of crank positions")
     if not mechanism.rod > mechanism.crank + abs(mechanism.offset):
         _require_full_revolution(mechanism, "the extreme velocity and acceleration")
         raise AssemblyError("the slider's acceleration is unbounded where the rod is perpendicular to the guide "
@@ -230,7 +236,7 @@ def slider_extremes(mechanism: CrankSlider, omega: float = 1.0, samples: int = 7
     return SliderExtremes(*(Extreme(float(p), float(f)) for p, f in zip(wrapped, values)))
 
 
-def approximate_slider(mechanism: CrankSlider, phi, omega: float = 1.0) -> Motion:
+def approximate_slider(mechanism: CrankSlider, phi: ArrayLike, omega: float = 1.0) -> Motion:
     """The textbooks' approximate (series) slider motion at constant crank speed ω.
 
     Parameters
@@ -257,7 +263,8 @@ def approximate_slider(mechanism: CrankSlider, phi, omega: float = 1.0) -> Motio
     ``s ≈ L2 + L1 (cos φ − (λ/4)(1 − cos 2φ))``, ``v ≈ −ω L1 (sin φ + (λ/2) sin 2φ)``,
     ``a ≈ −ω² L1 (cos φ + λ cos 2φ)``. The neglected term of s is −h⁴/(8 L2³), about L1 λ³/8.
     """
-    phi = np.asarray(phi, dtype=float)
+    phi = require_finite_array("phi", phi, "crank angles in rad")
+    omega = require_finite("omega", omega)
     l1, l2, e, b = mechanism.crank, mechanism.rod, mechanism.offset, mechanism.branch
     h = l1 * np.sin(phi) - e
     s = l1 * np.cos(phi) + b * (l2 - h**2 / (2.0 * l2))

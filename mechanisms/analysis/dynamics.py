@@ -20,9 +20,10 @@ from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..base import Mechanism
-from ..errors import InvalidParameterError
+from ..errors import InvalidParameterError, require_finite, require_finite_array, require_positive
 from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, applied_power, kinetic_energies,
                      potential_energy)
 
@@ -62,9 +63,9 @@ class ReducedModel:
     resistance: np.ndarray
 
 
-def reduced_model(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi,
+def reduced_model(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: ArrayLike,
                   loads: Sequence[Force | Torque] = (), gravity: float = STANDARD_GRAVITY,
-                  springs: Sequence[Spring] = (), flywheel=0.0) -> ReducedModel:
+                  springs: Sequence[Spring] = (), flywheel: ArrayLike = 0.0) -> ReducedModel:
     """J_red, dJ_red/dφ and M_c at crank angles φ, from one solution at φ_t = 1, φ_tt = 0.
 
     Parameters
@@ -95,9 +96,9 @@ def reduced_model(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi,
     return ReducedModel(inertia + np.asarray(flywheel, dtype=float), slope, resistance)
 
 
-def required_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi, omega, alpha=0.0,
-                    loads: Sequence[Force | Torque] = (), gravity: float = STANDARD_GRAVITY,
-                    springs: Sequence[Spring] = (), flywheel=0.0) -> np.ndarray:
+def required_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: ArrayLike, omega: ArrayLike,
+                    alpha: ArrayLike = 0.0, loads: Sequence[Force | Torque] = (), gravity: float = STANDARD_GRAVITY,
+                    springs: Sequence[Spring] = (), flywheel: ArrayLike = 0.0) -> np.ndarray:
     """The driving torque for a given crank motion, from Lagrange's equation (N·m).
 
     ``M_d = J_red φ_tt + ½ J_red' φ_t² + M_c``. Unlike the power balance it holds at φ_t = 0 too.
@@ -113,9 +114,10 @@ def _drive_torque(drive: Drive, t, phi, omega) -> np.ndarray:
     return np.asarray(drive, dtype=float)
 
 
-def angular_acceleration(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi, omega, drive: Drive,
-                         t=0.0, loads: Sequence[Force | Torque] = (), gravity: float = STANDARD_GRAVITY,
-                         springs: Sequence[Spring] = (), flywheel=0.0) -> np.ndarray:
+def angular_acceleration(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: ArrayLike, omega: ArrayLike,
+                         drive: Drive, t: ArrayLike = 0.0, loads: Sequence[Force | Torque] = (),
+                         gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = (),
+                         flywheel: ArrayLike = 0.0) -> np.ndarray:
     """The crank's angular acceleration from the equation of motion (rad/s²).
 
     ``φ_tt = (M_d − M_c − ½ J_red' φ_t²)/J_red``; ``drive`` is a torque (N·m) or a function
@@ -146,8 +148,8 @@ class Run:
 
 
 def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive, *, duration: float,
-             steps: int, phi0=0.0, omega0=0.0, loads: Sequence[Force | Torque] = (),
-             gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = (), flywheel=0.0) -> Run:
+             steps: int, phi0: ArrayLike = 0.0, omega0: ArrayLike = 0.0, loads: Sequence[Force | Torque] = (),
+             gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = (), flywheel: ArrayLike = 0.0) -> Run:
     """Integrate the equation of motion ``J_red φ_tt + ½ J_red' φ_t² = M_d − M_c`` in time.
 
     Parameters
@@ -255,7 +257,7 @@ def speed_fluctuation(run: Run, revolutions: int = 1) -> SpeedFluctuation:
     return SpeedFluctuation(*(a.reshape(shape) for a in (low, high, mean, (high - low) / mean)))
 
 
-def energy_swing(phi, torque) -> float:
+def energy_swing(phi: ArrayLike, torque: ArrayLike) -> float:
     """The largest swing of the excess work over one period (J), for the flywheel estimate.
 
     Parameters
@@ -274,7 +276,13 @@ def energy_swing(phi, torque) -> float:
         (the trapezoid rule), i.e. for a driving torque whose work over the period equals that of
         the resistance.
     """
-    phi, torque = np.asarray(phi, dtype=float), np.asarray(torque, dtype=float)
+    phi = require_finite_array("phi", phi, "crank angles in rad")
+    torque = require_finite_array("torque", torque, "N·m")
+    if phi.ndim != 1 or phi.shape != torque.shape or phi.size < 2:
+        raise InvalidParameterError("torque", f"{torque.size} values for {phi.size} crank angles",
+                                    "one value per crank angle, at two or more angles")
+    if not np.all(np.diff(phi) > 0.0):
+        raise InvalidParameterError("phi", "angles that do not increase", "increasing crank angles over one period")
     work = np.concatenate([[0.0], np.cumsum(0.5 * (torque[1:] + torque[:-1]) * np.diff(phi))])
     work = work - (phi - phi[0]) * work[-1] / (phi[-1] - phi[0])
     return float(work.max() - work.min())
@@ -289,4 +297,14 @@ def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> flo
     (chapter 6). It includes the mean reduced inertia of the mechanism itself, which is
     subtracted to size the flywheel; the variable part of J_red is neglected.
     """
+    swing = _number_at_least_zero("swing", swing, "J")
+    mean_speed = require_positive("mean_speed", mean_speed, "rad/s")
+    coefficient = require_positive("coefficient", coefficient, "(δ = (ω_max − ω_min)/ω_m)")
     return swing / (coefficient * mean_speed**2)
+
+
+def _number_at_least_zero(name: str, value, unit: str) -> float:
+    number = require_finite(name, value)
+    if number < 0.0:
+        raise InvalidParameterError(name, value, f"a finite number ≥ 0 {unit}")
+    return number

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..base import Mechanism, Solution
 from ..errors import InvalidParameterError, MechanismError
@@ -407,7 +408,8 @@ def _crank_speed(solution: Solution) -> np.ndarray:
 
 # --- reduction to the crank ---------------------------------------------------------------------
 
-def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi) -> tuple[np.ndarray, np.ndarray]:
+def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass],
+                    phi: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The reduced (equivalent) moment of inertia J_red(φ) at the crank and its derivative dJ_red/dφ.
 
     Parameters
@@ -441,7 +443,7 @@ def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi) -
     return 2.0 * energy, 2.0 * slope
 
 
-def reduced_torque(mechanism: Mechanism, loads: Sequence[Force | Torque], phi) -> np.ndarray:
+def reduced_torque(mechanism: Mechanism, loads: Sequence[Force | Torque], phi: ArrayLike) -> np.ndarray:
     """The reduced torque of applied loads at the crank, Q(φ) = P/φ_t (N·m).
 
     The generalized force of the loads: their power at φ_t = 1. The loads are evaluated on the
@@ -452,7 +454,7 @@ def reduced_torque(mechanism: Mechanism, loads: Sequence[Force | Torque], phi) -
     return applied_power(solution, loads)
 
 
-def potential_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi,
+def potential_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: ArrayLike,
                      gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = ()) -> np.ndarray:
     """dV/dφ (N·m): the torque at the crank that holds gravity and the springs in balance.
 
@@ -494,8 +496,9 @@ def driving_torque(solution: Solution, masses: Mapping[str, LinkMass], loads: Se
     return (change - applied_power(solution, loads)) / speed
 
 
-def energy_balance(solution: Solution, masses: Mapping[str, LinkMass], drive, loads: Sequence[Force | Torque] = (),
-                   gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = ()) -> np.ndarray:
+def energy_balance(solution: Solution, masses: Mapping[str, LinkMass], drive: ArrayLike,
+                   loads: Sequence[Force | Torque] = (), gravity: float = STANDARD_GRAVITY,
+                   springs: Sequence[Spring] = ()) -> np.ndarray:
     """The residual of the power balance (W): ``M_d φ_t + P_loads − dT/dt − dV/dt``.
 
     Parameters

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..base import Solution
 from ..errors import AssemblyError, require_length
 from ..four_bar import FourBar, assembly_intervals
 from ..motion import PointMotion
@@ -156,7 +157,7 @@ def limit_positions(mechanism: FourBar) -> LimitPositions:
     return LimitPositions(phi, xi, swing, forward, backward, max(forward, backward) / min(forward, backward))
 
 
-def transmission_angle(solution) -> np.ndarray:
+def transmission_angle(solution: Solution) -> np.ndarray:
     """Transmission angle μ (rad) at B between the coupler and the rocker, in [0, π].
 
     ``μ = |wrap(ψ − ξ)|``: the angle between the vectors B → A and B → C. A linkage runs well

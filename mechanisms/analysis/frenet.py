@@ -41,9 +41,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..base import Mechanism, Solution
-from ..errors import AssemblyError, InvalidParameterError, require_branch, require_finite, require_length
+from ..errors import (AssemblyError, InvalidParameterError, require_branch, require_finite, require_finite_array,
+                      require_length)
 from ..motion import AngleMotion, PointMotion
 
 __all__ = [
@@ -275,7 +277,7 @@ def driven_link(mechanism: Mechanism, pin: str = "A") -> str:
                                 f"{', '.join(f'{n} from {j}' for n, j in mechanism.links.items())})")
 
 
-def rotation_law(mechanism: Mechanism, phi, omega: float = 1.0, alpha: float = 0.0, order: int = 2,
+def rotation_law(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alpha: float = 0.0, order: int = 2,
                  link: str | None = None, solution: Solution | None = None) -> RotationLaw:
     """Solve a mechanism and return the law of rotation φ(s) of its driven link.
 
@@ -311,7 +313,7 @@ def rotation_law(mechanism: Mechanism, phi, omega: float = 1.0, alpha: float = 0
 # Closed forms of the laws for two mechanisms, derived in chapter 7 (corrected where the
 # source's print differs; see the errata). They serve as a check of the general route.
 
-def crank_slider_law(s, curvature: float, rod: float, offset: float = 0.0,
+def crank_slider_law(s: ArrayLike, curvature: float, rod: float, offset: float = 0.0,
                      branch: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """φ, φ', φ'' of the coupler of a crank-slider in closed form.
 
@@ -345,10 +347,14 @@ def crank_slider_law(s, curvature: float, rod: float, offset: float = 0.0,
     rod = require_length("rod", rod)
     offset = require_finite("offset", offset)
     b = require_branch(branch)
-    psi = k * np.asarray(s, dtype=float)
+    psi = k * require_finite_array("s", s, "arc lengths in m")
     sin, cos = np.sin(psi), np.cos(psi)
     h = offset - sin / k
-    w = np.sqrt((rod - h) * (rod + h))
+    reach = (rod - h) * (rod + h)
+    if np.any(reach < 0.0):
+        raise AssemblyError("the rod cannot reach the guide (the pin is farther than the rod from it)",
+                            psi[reach < 0.0])
+    w = np.sqrt(reach)
     theta = np.arctan2(h, b * w)
     with np.errstate(divide="ignore", invalid="ignore"):
         theta_s = -b * cos / w
@@ -356,7 +362,8 @@ def crank_slider_law(s, curvature: float, rod: float, offset: float = 0.0,
     return _wrap(theta - psi - 0.5 * np.pi), theta_s - k, theta_ss
 
 
-def rocker_in_block_law(s, curvature: float, pivot=(0.0, 1.0)) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def rocker_in_block_law(s: ArrayLike, curvature: float,
+                        pivot: tuple[float, float] = (0.0, 1.0)) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """φ, φ', φ'' of a rocker hinged to the crank pin and sliding through a block at a fixed pivot.
 
     Parameters
@@ -383,7 +390,7 @@ def rocker_in_block_law(s, curvature: float, pivot=(0.0, 1.0)) -> tuple[np.ndarr
     """
     k = require_length("curvature", curvature)
     a, b = (require_finite("pivot", value) for value in pivot)
-    psi = k * np.asarray(s, dtype=float)
+    psi = k * require_finite_array("s", s, "arc lengths in m")
     sin, cos = np.sin(psi), np.cos(psi)
     x, y = a - cos / k, b - sin / k
     q = x * x + y * y
@@ -394,7 +401,7 @@ def rocker_in_block_law(s, curvature: float, pivot=(0.0, 1.0)) -> tuple[np.ndarr
     return _wrap(np.arctan2(y, x) - psi - 0.5 * np.pi), theta_s - k, theta_ss
 
 
-def lambda_mechanism_gamma(psi, crank: float, half_coupler: float, ground: float) -> np.ndarray:
+def lambda_mechanism_gamma(psi: ArrayLike, crank: float, half_coupler: float, ground: float) -> np.ndarray:
     """The source's closed form (21) of the coupler angle γ of the lambda mechanism (rad).
 
     Parameters

@@ -99,7 +99,7 @@ def synthesize_coupler_output(time_ratio: float, transmission_angle: float, rock
     Parameters
     ----------
     time_ratio : float
-        K_v ≥ 1: working stroke over return stroke, in crank angle.
+        K_v > 1: working stroke over return stroke, in crank angle.
     transmission_angle : float
         γ (rad), 0 < γ < π: the transmission angle in the first limit position.
     rocker : float
@@ -116,6 +116,9 @@ def synthesize_coupler_output(time_ratio: float, transmission_angle: float, rock
         K_v and γ is for :func:`check_design` to say.
     """
     phi_x = return_angle(time_ratio)
+    if not time_ratio > 1.0:
+        raise InvalidParameterError("time_ratio", time_ratio,
+                                    "a time ratio K_v > 1 (at K_v = 1 the synthesized crank has no length)")
     gamma = require_finite("transmission_angle", transmission_angle)
     if not 0.0 < gamma < math.pi:
         raise InvalidParameterError("transmission_angle", transmission_angle, "an angle γ in (0, π) rad")
@@ -246,7 +249,9 @@ def largest_rotatable_angle(time_ratio: float, rocker: float = 1.0, tolerance: f
         return kind.crank_rotates and kind.name != "change point"
 
     if not rotates(lo):
-        return math.nan
+        raise InvalidParameterError("time_ratio", time_ratio,
+                                    "a time ratio whose designs at small γ have a fully rotating crank (below "
+                                    "K_v ≈ 1.001 the crank is too short against the tolerance of Grashof's test)")
     while hi - lo > tolerance:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if rotates(mid) else (lo, mid)

@@ -18,6 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import AssemblyError, require_branch, require_length
 from ..motion import AngleMotion, PointMotion, angle_of
@@ -84,7 +85,7 @@ def _assembly_failure(distance, shape, total: float, difference: float, toleranc
 
 
 def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int = 1,
-          angles=None) -> Hinge:
+          angles: ArrayLike | None = None) -> Hinge:
     """Solve two links meeting at a hinge: J with |J − p| = L_p and |J − q| = L_q.
 
     Parameters

@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import AssemblyError, InvalidParameterError, require_branch, require_finite, require_length
 from ..motion import AngleMotion, Motion, PointMotion
@@ -62,7 +63,7 @@ class SliderOnLine:
 
 
 def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direction: float = 0.0,
-                   branch: int = 1, angles=None) -> SliderOnLine:
+                   branch: int = 1, angles: ArrayLike | None = None) -> SliderOnLine:
     """Solve a rod from a moving joint J to a slider B on a fixed straight guide.
 
     Parameters

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from ..errors import InvalidParameterError, require_order
+from ..errors import require_finite_array, require_order
 from ..motion import AngleMotion, PointMotion, constant, point_on_link
 
 __all__ = ["crank_angle", "crank_pin"]
 
 
-def crank_angle(phi, omega, alpha=0.0, order: int = 2) -> AngleMotion:
+def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order: int = 2) -> AngleMotion:
     """The crank's angle φ with φ_t = ω and φ_tt = α, as arrays over the positions.
 
     Parameters
@@ -30,17 +31,12 @@ def crank_angle(phi, omega, alpha=0.0, order: int = 2) -> AngleMotion:
     (:func:`~mechanisms.motion.constant`), which takes no memory.
     """
     order = require_order(order)
-    phi = np.asarray(phi, dtype=float)
-    bad = ~np.isfinite(phi)
-    if bad.any():
-        raise InvalidParameterError("phi", np.asarray(phi)[bad][:3].tolist(), "finite crank angles (rad)")
+    phi = require_finite_array("phi", phi, "crank angles in rad")
     if order == 0:
         return AngleMotion(phi)
     derivatives = []
     for name, value in (("omega", omega), ("alpha", alpha))[:order]:
-        value = np.asarray(value, dtype=float)
-        if not np.all(np.isfinite(value)):
-            raise InvalidParameterError(name, value.tolist(), "finite (rad/s or rad/s²)")
+        value = require_finite_array(name, value, "rad/s" if name == "omega" else "rad/s²")
         # a constant rate is a broadcast view of one number (no memory); an array is copied
         derivatives.append(constant(float(value), phi.shape) if value.ndim == 0
                            else np.broadcast_to(value, phi.shape).astype(float))

@@ -24,6 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import AssemblyError, InvalidParameterError, require_branch, require_length
 from ..motion import AngleMotion, Motion, PointMotion, fixed_point
@@ -142,7 +143,9 @@ class LineIntersection:
     singular: np.ndarray
 
 
-def line_intersection(first_point, first_angle, second_point, second_angle, angles=None) -> LineIntersection:
+def line_intersection(first_point: PointMotion | complex, first_angle: AngleMotion | float,
+                      second_point: PointMotion | complex, second_angle: AngleMotion | float,
+                      angles: ArrayLike | None = None) -> LineIntersection:
     """Intersection of two moving lines, with its velocity and acceleration.
 
     Parameters
@@ -216,7 +219,8 @@ class PointLineDistance:
     foot: PointMotion
 
 
-def distance_to_line(point, through, angle) -> PointLineDistance:
+def distance_to_line(point: PointMotion | complex, through: PointMotion | complex,
+                     angle: AngleMotion | float) -> PointLineDistance:
     """Signed distance from a moving point to a moving line, with derivatives.
 
     Parameters
@@ -288,7 +292,8 @@ class CircleOnLine:
     singular: np.ndarray
 
 
-def circle_on_line(centre, radius: float, through, angle, branch: int = 1, angles=None) -> CircleOnLine:
+def circle_on_line(centre: PointMotion | complex, radius: float, through: PointMotion | complex,
+                   angle: AngleMotion | float, branch: int = 1, angles: ArrayLike | None = None) -> CircleOnLine:
     """Where a circle about a (moving) centre meets a moving line: a rocker's pin in a slot.
 
     Parameters
