@@ -149,6 +149,18 @@ def test_the_full_edition_has_the_solutions():
             f"{page}: an exercise without its solution (in a dropdown)"
 
 
+@pytest.mark.parametrize("edition", list(EDITIONS))
+def test_exercises_are_numbered_by_chapter(edition):
+    # expected: on the page exercises/NN-…, the exercises NN.1, NN.2 … in order (_ext/exercise_numbers.py)
+    site = require_built(edition)
+    for page in exercise_pages(edition):
+        chapter = int(re.match(r"exercises/(\d+)-", page).group(1))
+        html = (site / page).read_text(encoding="utf8")
+        titles = re.findall(r'<p class="admonition-title">\s*(?:<span[^>]*>)?\s*Exercise ([0-9.]+)', html)
+        assert titles == [f"{chapter}.{k}" for k in range(1, len(titles) + 1)], f"{page}: {titles}"
+        assert len(titles) >= 4, f"{page}: the exercise titles were not found"
+
+
 def test_the_student_edition_has_no_solutions():
     site = require_built("student")
     assert exercise_pages("student") == exercise_pages("full"), "the two editions have different exercise pages"
