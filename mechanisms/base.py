@@ -8,6 +8,7 @@ the generic solver of :mod:`mechanisms.verify`), and the parameters of its comma
 
 from __future__ import annotations
 
+import math
 import warnings
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
@@ -121,8 +122,9 @@ class Solution:
 class Parameter:
     """A parameter of a mechanism as the command line asks for it.
 
-    ``kind`` is ``"length"`` (a finite length > 0, m), ``"number"`` (finite), ``"pair"``
-    (two numbers ``A,B``, m) or ``"branch"`` (+1 or -1).
+    ``kind`` is ``"length"`` (a finite length > 0, m), ``"number"`` (finite), ``"angle"``
+    (degrees on the command line, radians for the class), ``"pair"`` (two numbers ``A,B``, m)
+    or ``"branch"`` (+1 or -1).
     """
 
     name: str
@@ -249,6 +251,8 @@ class Mechanism(ABC):
                 parts.append(f"{p.name} = {value:+d}")
             elif p.kind == "pair":
                 parts.append(f"{p.name} = ({value[0]:g}, {value[1]:g}) m")
+            elif p.kind == "angle":
+                parts.append(f"{p.name} = {math.degrees(value):g}°")
             else:
                 parts.append(f"{p.name} = {value:g} m" if p.kind == "length" else f"{p.name} = {value:g}")
         return f"{self.cli_name or type(self).__name__}: " + ", ".join(parts)

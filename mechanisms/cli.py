@@ -67,7 +67,12 @@ def _pair(text: str) -> tuple[float, float]:
     return float(parts[0]), float(parts[1])
 
 
-_KINDS = {"length": float, "number": float, "pair": _pair, "branch": int}
+_KINDS = {"length": float, "number": float, "angle": float, "pair": _pair, "branch": int}
+
+
+def _class_value(parameter, value):
+    """A command-line value as the mechanism's class takes it: angles from degrees to radians."""
+    return math.radians(value) if parameter.kind == "angle" and value is not None else value
 
 
 def _number(value: float):
@@ -138,7 +143,11 @@ def _text_block(title: str, rows: list[dict], group: str, name: str) -> str:
 
 def _format(mechanism: Mechanism, omega: float, alpha: float, rows: list[dict], fmt: str) -> str:
     if fmt == "json":
-        return json.dumps({"mechanism": mechanism.cli_name, "parameters": mechanism.parameters() |
+        # as the command line takes them: angles in degrees, named like the rows' angle_deg
+        parameters = {f"{p.name}_deg" if p.kind == "angle" else p.name:
+                      math.degrees(value) if p.kind == "angle" else value
+                      for p, value in zip(mechanism.cli_parameters, mechanism.parameters().values())}
+        return json.dumps({"mechanism": mechanism.cli_name, "parameters": parameters |
                            {"omega": omega, "alpha": alpha}, "rows": rows}, indent=1, ensure_ascii=False)
     if fmt == "csv":
         out = io.StringIO()
@@ -156,7 +165,7 @@ def _format(mechanism: Mechanism, omega: float, alpha: float, rows: list[dict], 
 
 def _table(args: argparse.Namespace) -> str:
     cls = registry[args.mechanism]
-    mechanism = cls(**{p.name: getattr(args, p.name) for p in cls.cli_parameters})
+    mechanism = cls(**{p.name: _class_value(p, getattr(args, p.name)) for p in cls.cli_parameters})
     positions = 12 if args.positions is None else args.positions
     if not args.angles and not 1 <= positions <= MAX_POSITIONS:
         raise InvalidParameterError("--positions", positions, f"a whole number from 1 to {MAX_POSITIONS}")

@@ -421,13 +421,13 @@ class SliderOnCoupler(Mechanism):
     L is a pair of sliding pairs.
     """
 
-    # not on the command line: its guide angle is in rad, and the command line takes degrees only
+    cli_name = "slider-on-coupler"
     cli_parameters = (
         Parameter("crank", "length", "crank radius r = |OA|, m"),
         Parameter("rod", "length", "coupler length |AB|, m"),
         Parameter("offset", "number", "the slider B runs on the line y = OFFSET, m", 0.0),
         Parameter("guide_point", "pair", "a point X0,Y0 of the fixed guide of L, m"),
-        Parameter("guide_angle", "number", "direction of the guide of L, rad"),
+        Parameter("guide_angle", "angle", "direction of the guide of L, degrees from +x"),
     )
     links = {"crank": "O", "coupler": "A"}
 

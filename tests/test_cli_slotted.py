@@ -88,3 +88,27 @@ def test_other_slotted_mechanisms(capsys):
     status, out, _ = run(capsys, ["table", "slotted-rockers", "--crank", "0.1", "--pivot", "0,0.3", "--rocker-pivot",
                                   "0.12,0.38", "--rocker", "0.2", "--omega", "10", "--format", "csv"])
     assert status == 0 and "D.coriolis" in out.splitlines()[0] and len(out.splitlines()) == 13
+
+
+def test_slider_on_coupler_takes_its_guide_angle_in_degrees(capsys):
+    # expected by hand: L is where the coupler's line A → B meets the guide through (0.2, 0.1) at 60°,
+    # with A = r e^{iφ}, B = (r cos φ + √(L² − r² sin² φ), 0) (offset 0)
+    args = ["table", "slider-on-coupler", "--crank", "0.08", "--rod", "0.3", "--guide-point", "0.2,0.1",
+            "--guide-angle", "60", "--omega", "10", "--positions", "4", "--format", "json"]
+    status, out, _ = run(capsys, args)
+    assert status == 0
+    data = json.loads(out)
+    assert data["parameters"]["guide_angle_deg"] == pytest.approx(60.0)
+    for row in data["rows"]:
+        phi = math.radians(row["phi_deg"])
+        a = complex(0.08 * math.cos(phi), 0.08 * math.sin(phi))
+        b = complex(a.real + math.sqrt(0.3**2 - a.imag**2), 0.0)
+        g, u = complex(0.2, 0.1), complex(math.cos(math.radians(60)), math.sin(math.radians(60)))
+        d = (b - a) / abs(b - a)
+        # solve a + t·d = g + s·u for t, s (Cramer's rule on the real and imaginary parts)
+        det = d.real * (-u.imag) - d.imag * (-u.real)
+        t = ((g - a).real * (-u.imag) - (g - a).imag * (-u.real)) / det
+        expected = a + t * d
+        point = row["points"]["L"]
+        assert point["x"] == pytest.approx(expected.real, abs=1e-14)
+        assert point["y"] == pytest.approx(expected.imag, abs=1e-14)
