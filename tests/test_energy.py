@@ -51,7 +51,7 @@ def test_rotating_link_with_offset_centre_and_angular_acceleration():
     m = mech.CrankSlider(0.1, 0.4)
     props = energy.LinkMass(2.0, along=0.03, left=-0.04, inertia=0.01)
     j_o = 0.01 + 2.0 * (0.03**2 + 0.04**2)  # = 0.015 kg m²
-    assert props.inertia_about_joint() == pytest.approx(0.015, rel=1e-14)
+    assert props.inertia_about_joint() == pytest.approx(j_o, rel=1e-14)
     sol = m.solve(np.array([0.3, 2.0]), omega=-12.0, alpha=7.0)
     T = energy.kinetic_energy(sol, {"crank": props})
     assert np.allclose(T.value, 0.5 * 0.015 * 144.0, rtol=1e-13)

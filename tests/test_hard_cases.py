@@ -287,7 +287,6 @@ def test_reference_agrees_with_the_generic_solver():
 def test_crank_slider_at_the_ends_of_its_own_ranges(crank, rod, offset):
     # expected (by the mathematics): at a limit of assembly the rod stands perpendicular to the
     # guide, so the rates are unbounded: marked singular, never a huge finite number, never an error
-    import warnings
     from mechanisms.crank_slider import CrankSlider
     try:
         m = CrankSlider(crank, rod, offset)
@@ -308,7 +307,6 @@ def test_crank_slider_at_the_ends_of_its_own_ranges(crank, rod, offset):
 @given(lengths=st.tuples(st.floats(0.05, 1.0), st.floats(0.05, 1.0), st.floats(0.05, 1.0)),
        frame=st.tuples(st.floats(0.05, 1.0), st.floats(-0.3, 0.3)))
 def test_four_bar_at_the_ends_of_its_own_intervals(lengths, frame):
-    import warnings
     from mechanisms.four_bar import FourBar
     try:
         m = FourBar(*lengths, frame)

@@ -373,7 +373,7 @@ def test_lecture_two_rockers_remaining_formulas():
         return central_difference(fn, phi, omega, 1e-4, 2)
 
     k = foot(phi)
-    x_k, y_k = k.real, k.imag
+    x_k = k.real
     k_t, k_tt = dd1(foot), dd2(foot)
     regular = np.abs(np.cos(xi)) > 0.2
     c2 = np.cos(xi) ** 2

@@ -31,7 +31,6 @@ import math
 from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
-import numpy as np
 
 from ..base import Mechanism, Solution
 from ..crank_slider import CrankSlider
