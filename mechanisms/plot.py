@@ -356,6 +356,9 @@ def _offline(html: str) -> str:
 def _to_html(fig, frame, count: int, interval: int) -> str:
     """Run ``frame(k)`` for k = 0 … count−1 into an HTML/JavaScript animation; close the figure."""
     fig.set_dpi(ANIMATION_DPI)
+    # FuncAnimation redraws the canvas after each frame (draw_idle) and then draws it again to save
+    # the frame; with nobody looking at this canvas the first drawing is wasted time
+    fig.canvas.draw_idle = lambda *args, **kwargs: None
     anim = animation.FuncAnimation(fig, frame, frames=count, interval=interval, blit=False)
     html = _offline(anim.to_jshtml(default_mode="loop"))
     plt.close(fig)
