@@ -7,7 +7,7 @@ positions the temporaries stay in the cache, and the memory they use is reused b
 each block's results are copied once into the arrays over all positions. Every operation of the
 closed forms is elementwise, so the result is that of solving all positions at once, to round-off
 (numpy's vector loops may round an element differently depending on where its array starts in
-memory); it comes about one and a half times as fast (chapter 8).
+memory); for the four-bar at a million positions it is about one and a half times as fast.
 """
 
 from __future__ import annotations

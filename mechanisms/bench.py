@@ -249,9 +249,9 @@ def best_time(task: Callable[[], object], repeat: int) -> float:
 def output_bytes(solution: Solution) -> int:
     """Bytes of the arrays a solution holds (angles, points, sliders), each array counted once.
 
-    Not counted, because they cost no memory traffic: the crank angles passed in, broadcast views
-    (a zero stride), and arrays of zeros only (a fixed pivot's velocity …), which the system hands
-    out as zeroed memory that need not be written.
+    Not counted, because they cost no memory traffic: the crank angles passed in, and views of one
+    number (a zero stride: a fixed pivot, its zero velocity and acceleration, a constant crank
+    speed), which take no memory.
     """
     seen, total = set(), 0
     skip = {np.asarray(solution.phi).__array_interface__["data"][0]}
@@ -263,7 +263,7 @@ def output_bytes(solution: Solution) -> int:
                 continue
             array = np.asarray(array)
             address = array.__array_interface__["data"][0]
-            if address in seen or address in skip or 0 in array.strides or not array.any():
+            if address in seen or address in skip or 0 in array.strides:
                 continue
             seen.add(address)
             total += array.nbytes
