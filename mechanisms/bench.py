@@ -605,18 +605,34 @@ def plot_work_precision(rows: list[dict], axes=None):
             x = [r["ns_per_position"] for r in chosen]
             y = [max(r["error"], 1e-17) for r in chosen]
             ax.plot(x, y, marker=marker, color=colour, ls="-" if len(chosen) > 1 else "", label=method)
-            for r, xi, yi in zip(chosen, x, y):
-                if r["parameter"] is not None:
-                    ax.annotate(f"{r['parameter']:.0e}", (xi, yi), xytext=(4, 2), textcoords="offset points",
-                                fontsize=7, color=colour)
+            for (xi, yi), text in _labels(chosen, x, y):
+                ax.annotate(text, (xi, yi), xytext=(4, 2), textcoords="offset points", fontsize=7, color=colour)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.xaxis.set_minor_formatter(plt.NullFormatter())
         ax.set_title(quantity)
         ax.set_xlabel("time per position, ns")
     axes[0].set_ylabel("largest error (rad, m; per s, per s²)")
-    axes[-1].legend(loc="lower right", fontsize=8)
+    figure = axes[0].figure
+    handles, names = axes[-1].get_legend_handles_labels()
+    figure.legend(handles, names, loc="lower center", ncol=len(names), fontsize=8, frameon=False)
+    figure.subplots_adjust(bottom=0.24)
     return axes
+
+
+def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tuple[float, float], str]]:
+    """The parameters of a method's points as labels; points whose errors are within a factor of
+    three of each other (Newton's tolerances once at round-off) share one label, so none overlap."""
+    labels: list[tuple[tuple[float, float], str]] = []
+    for r, xi, yi in zip(chosen, x, y):
+        if r["parameter"] is None:
+            continue
+        text = f"{r['parameter']:.0e}"
+        if labels and 1 / 3 < yi / labels[-1][0][1] < 3:
+            labels[-1] = (labels[-1][0], f"{labels[-1][1]}, {text}")
+        else:
+            labels.append(((xi, yi), text))
+    return labels
 
 
 def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=None):
