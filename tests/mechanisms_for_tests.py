@@ -7,10 +7,10 @@ s = r cos φ, s_t = −r φ_t sin φ, s_tt = −r (φ_tt sin φ + φ_t² cos φ)
 
 import numpy as np
 
-from mechanisms.base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
+from mechanisms.linkages.base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from mechanisms.blocks.crank import crank_pin
-from mechanisms.errors import require_length
-from mechanisms.motion import Motion, PointMotion
+from mechanisms.core.validate import require_length
+from mechanisms.core.motion import Motion, PointMotion
 
 
 class ScotchYoke(Mechanism):

@@ -57,7 +57,7 @@ def four_bar_geometries(draw):
     """
     from hypothesis import assume
 
-    from mechanisms.four_bar import assembly_intervals
+    from mechanisms.linkages.four_bar import assembly_intervals
 
     crank, coupler, rocker, distance = (draw(four_bar_lengths) for _ in range(4))
     direction = draw(st.floats(-np.pi, np.pi, **finite))

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.analysis import crank_slider as analysis
-from mechanisms.errors import AssemblyError
+from mechanisms.core.errors import AssemblyError
 from mechanisms.verify import central_difference
 from strategies import branches, crank_slider_geometries, finite
 

@@ -117,6 +117,6 @@ def test_best_line_and_straight_part():
 @pytest.mark.parametrize("bad", [float("nan"), 0.0, -1.0])
 def test_grashof_class_rejects_bad_lengths(bad):
     from mechanisms.analysis.four_bar import grashof_class
-    from mechanisms.errors import InvalidParameterError
+    from mechanisms.core.errors import InvalidParameterError
     with pytest.raises(InvalidParameterError, match="crank must be a finite length"):
         grashof_class(bad, 1.0, 1.0, 1.0)

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.analysis.slotted import half_swing, limit_positions, shaper_stroke, time_ratio
-from mechanisms.errors import InvalidParameterError
+from mechanisms.core.errors import InvalidParameterError
 from strategies import finite, slotted_lever_geometries
 
 FINE = np.radians(np.arange(0.0, 360.0, 0.01))

@@ -3,7 +3,7 @@
 import pytest
 
 from mechanisms.analysis.structure import BOOK_STRUCTURES, mobility
-from mechanisms.errors import InvalidParameterError
+from mechanisms.core.errors import InvalidParameterError
 
 
 def test_mobility_by_hand():

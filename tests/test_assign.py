@@ -1,4 +1,4 @@
-"""Tests of mechanisms.assign: variants are valid and reproducible, the key is right, the sheets are complete."""
+"""Tests of mechanisms.course.assign: variants are valid and reproducible, the key is right, the sheets are complete."""
 
 from __future__ import annotations
 
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from mechanisms import CrankSlider, verify
-from mechanisms.assign import (STEP_DEG, TASKS, Variant, answer_key, make_variant, make_variants, sheet_html,
+from mechanisms.course.assign import (STEP_DEG, TASKS, Variant, answer_key, make_variant, make_variants, sheet_html,
                                sheet_markdown, student_ids, write_assignment)
 from mechanisms.cli import main as cli_main
-from mechanisms.errors import InvalidParameterError
+from mechanisms.core.errors import InvalidParameterError
 
 FULL_TURN = np.radians(np.arange(0.0, 360.0, 0.5))
 SEEDS = range(8)

@@ -1,11 +1,11 @@
-"""Tests of the mechanism base (mechanisms.base): solutions looked up by name, points on demand."""
+"""Tests of the mechanism base (mechanisms.linkages.base): solutions looked up by name, points on demand."""
 
 import numpy as np
 import pytest
 
 import mechanisms as mech
-from mechanisms.base import registry
-from mechanisms.errors import InvalidParameterError
+from mechanisms.linkages.base import registry
+from mechanisms.core.errors import InvalidParameterError
 from mechanisms_for_tests import ScotchYoke
 
 PHI = np.radians([0.0, 90.0, 180.0])

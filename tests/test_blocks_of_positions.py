@@ -1,4 +1,4 @@
-"""Solving long arrays block by block (mechanisms._blocks_of_positions) changes nothing but the time.
+"""Solving long arrays block by block (mechanisms.linkages.chunks) changes nothing but the time.
 
 The expected values are the same mechanism's solution of all positions at once (``_solve_block``
 on the whole array), which is what the package computed before it worked in blocks. They agree to
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 import mechanisms as mech
-from mechanisms._blocks_of_positions import BLOCK, solve_in_blocks
+from mechanisms.linkages.chunks import BLOCK, solve_in_blocks
 from mechanisms.blocks.crank import crank_angle
-from mechanisms.motion import fixed_point
-from mechanisms.errors import AssemblyError, DeadCentreWarning
+from mechanisms.core.motion import fixed_point
+from mechanisms.core.errors import AssemblyError, DeadCentreWarning
 
 N = 5 * BLOCK + 123          # several blocks and a short last one
 

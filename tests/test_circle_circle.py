@@ -6,8 +6,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from mechanisms.blocks.circle_circle import hinge
-from mechanisms.errors import AssemblyError, InvalidParameterError
-from mechanisms.motion import PointMotion
+from mechanisms.core.errors import AssemblyError, InvalidParameterError
+from mechanisms.core.motion import PointMotion
 from strategies import lengths, points
 
 

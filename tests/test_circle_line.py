@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 
 from mechanisms.blocks.circle_line import SliderOnLine, slider_on_line
 from mechanisms.blocks.crank import crank_angle, crank_pin
-from mechanisms.errors import AssemblyError, InvalidParameterError
-from mechanisms.motion import PointMotion
+from mechanisms.core.errors import AssemblyError, InvalidParameterError
+from mechanisms.core.motion import PointMotion
 from mechanisms.verify import central_difference, solve_constraints
 from strategies import branches, finite
 

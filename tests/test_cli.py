@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from mechanisms import cli
-from mechanisms.base import Parameter
-from mechanisms.errors import InvalidParameterError
+from mechanisms.linkages.base import Parameter
+from mechanisms.core.errors import InvalidParameterError
 from mechanisms_for_tests import ScotchYoke
 
 

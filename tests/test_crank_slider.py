@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms import verify
-from mechanisms.errors import AssemblyError, DeadCentreWarning, InvalidParameterError
+from mechanisms.core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError
 from strategies import branches, crank_slider_geometries, finite
 
 PHI = np.radians(np.arange(0.0, 360.0, 10.0))
@@ -249,7 +249,7 @@ def test_description_and_registration():
     m = mech.CrankSlider(0.08, 0.3, 0.01, -1)
     assert m.parameters() == {"crank": 0.08, "rod": 0.3, "offset": 0.01}
     assert repr(m) == "CrankSlider(crank=0.08, rod=0.3, offset=0.01, branch=-1)"
-    assert mech.base.registry["crank-slider"] is mech.CrankSlider
+    assert mech.registry["crank-slider"] is mech.CrankSlider
     assert m.preserved_distances() == {("O", "A"): 0.08, ("A", "B"): 0.3}
 
 

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.analysis import dynamics, energy, kinetostatics
-from mechanisms.errors import InvalidParameterError
+from mechanisms.core.errors import InvalidParameterError
 
 from strategies import crank_rockers, crank_slider_geometries, finite
 

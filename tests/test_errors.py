@@ -1,40 +1,40 @@
-"""Tests of mechanisms.errors: every message names what the student can act on."""
+"""Tests of mechanisms.core.errors: every message names what the student can act on."""
 
 import math
 
 import numpy as np
 import pytest
 
-from mechanisms import errors
+from mechanisms.core import errors, validate
 from mechanisms.blocks.crank import crank_angle
 
 
 @pytest.mark.parametrize("value", [0.0, -1.0, math.nan, math.inf, "abc", None])
 def test_require_length_names_parameter_and_value(value):
     with pytest.raises(errors.InvalidParameterError, match=r"rod must be a finite length > 0 m: got rod = ") as info:
-        errors.require_length("rod", value)
+        validate.require_length("rod", value)
     assert info.value.name == "rod"
     assert isinstance(info.value, ValueError)
 
 
 def test_require_length_accepts_positive():
-    assert errors.require_length("crank", 0.08) == 0.08
+    assert validate.require_length("crank", 0.08) == 0.08
 
 
 @pytest.mark.parametrize("value", [0, 2, "+1", True, 1.5])
 def test_branch_must_be_plus_or_minus_one(value):
     with pytest.raises(errors.InvalidParameterError, match=r"branch must be \+1 or -1"):
-        errors.require_branch(value)
+        validate.require_branch(value)
 
 
 def test_branch_accepts_both():
-    assert errors.require_branch(1) == 1 and errors.require_branch(-1) == -1
+    assert validate.require_branch(1) == 1 and validate.require_branch(-1) == -1
 
 
 @pytest.mark.parametrize("value", [3, -1, 1.5, True])
 def test_order_must_be_0_1_or_2(value):
     with pytest.raises(errors.InvalidParameterError, match="order must be 0"):
-        errors.require_order(value)
+        validate.require_order(value)
 
 
 def test_assembly_error_names_angles_and_range():

@@ -8,7 +8,7 @@ import pytest
 from hypothesis import assume, given, settings
 
 from mechanisms import AssemblyError, DeadCentreWarning, FourBar, InvalidParameterError
-from mechanisms.four_bar import (assembly_intervals, cramer_rates, half_angle_coupler_angle,
+from mechanisms.linkages.four_bar import (assembly_intervals, cramer_rates, half_angle_coupler_angle,
                                  stable_coupler_angle)
 from mechanisms.verify import constraint_residual, derivative_errors, distance_deviation, solve_constraints
 from strategies import four_bar_geometries

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.analysis import frenet
-from mechanisms.motion import AngleMotion
+from mechanisms.core.motion import AngleMotion
 from strategies import crank_rockers, crank_slider_geometries, finite, slotted_lever_geometries
 
 # Pylypaka and Chepizhnyi's problems: k = 0.5 1/m, r = 2 m.

@@ -1,4 +1,4 @@
-"""Tests of mechanisms.grading: the key graded as answers is 100 % right, perturbed answers are caught by
+"""Tests of mechanisms.course.grading: the key graded as answers is 100 % right, perturbed answers are caught by
 the stated tolerances, and malformed files give clear messages."""
 
 from __future__ import annotations
@@ -8,8 +8,8 @@ import pathlib
 
 import pytest
 
-from mechanisms.assign import answer_key, make_variants, write_assignment
-from mechanisms.grading import (GradingError, check_files, difference, kind_of, parse_number, read_key,
+from mechanisms.course.assign import answer_key, make_variants, write_assignment
+from mechanisms.course.grading import (GradingError, check_files, difference, kind_of, parse_number, read_key,
                                 tolerance)
 
 

@@ -20,8 +20,8 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.bench import jacobian_condition, reference
-from mechanisms.errors import AssemblyError, DeadCentreWarning
-from mechanisms.four_bar import _pqf, half_angle_coupler_angle, stable_coupler_angle
+from mechanisms.core.errors import AssemblyError, DeadCentreWarning
+from mechanisms.linkages.four_bar import _pqf, half_angle_coupler_angle, stable_coupler_angle
 
 EPS = np.finfo(float).eps
 
@@ -287,7 +287,7 @@ def test_reference_agrees_with_the_generic_solver():
 def test_crank_slider_at_the_ends_of_its_own_ranges(crank, rod, offset):
     # expected (by the mathematics): at a limit of assembly the rod stands perpendicular to the
     # guide, so the rates are unbounded: marked singular, never a huge finite number, never an error
-    from mechanisms.crank_slider import CrankSlider
+    from mechanisms.linkages.crank_slider import CrankSlider
     try:
         m = CrankSlider(crank, rod, offset)
     except mech.AssemblyError:
@@ -307,7 +307,7 @@ def test_crank_slider_at_the_ends_of_its_own_ranges(crank, rod, offset):
 @given(lengths=st.tuples(st.floats(0.05, 1.0), st.floats(0.05, 1.0), st.floats(0.05, 1.0)),
        frame=st.tuples(st.floats(0.05, 1.0), st.floats(-0.3, 0.3)))
 def test_four_bar_at_the_ends_of_its_own_intervals(lengths, frame):
-    from mechanisms.four_bar import FourBar
+    from mechanisms.linkages.four_bar import FourBar
     try:
         m = FourBar(*lengths, frame)
         intervals = m.assembly_intervals()

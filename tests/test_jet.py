@@ -1,10 +1,10 @@
-"""Tests of mechanisms.jet: exact derivatives along a path, against derivatives taken by hand."""
+"""Tests of mechanisms.verify.jet: exact derivatives along a path, against derivatives taken by hand."""
 
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mechanisms.jet import Jet
+from mechanisms.verify.jet import Jet
 
 xs = st.floats(0.1, 3.0)
 

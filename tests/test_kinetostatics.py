@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.analysis import energy, kinetostatics
-from mechanisms.errors import InvalidParameterError, MechanismError
+from mechanisms.core.errors import InvalidParameterError, MechanismError
 
 from strategies import crank_slider_with_masses, crank_speeds, finite, four_bar_with_masses
 

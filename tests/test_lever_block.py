@@ -14,8 +14,8 @@ from hypothesis import strategies as st
 
 from mechanisms.blocks.crank import crank_angle, crank_pin
 from mechanisms.blocks.lever_block import LeverBlock, lever_block, lever_through_pivot
-from mechanisms.errors import InvalidParameterError
-from mechanisms.motion import PointMotion
+from mechanisms.core.errors import InvalidParameterError
+from mechanisms.core.motion import PointMotion
 from mechanisms.verify import central_difference
 from strategies import finite, rates, slotted_lever_geometries
 

@@ -17,8 +17,8 @@ from mechanisms.blocks.circle_line import slider_on_line
 from mechanisms.blocks.crank import crank_angle, crank_pin
 from mechanisms.blocks.lines import (CircleOnLine, LineIntersection, PointLineDistance, angle_from_distance,
                                      circle_on_line, distance_to_line, line_intersection)
-from mechanisms.errors import AssemblyError, InvalidParameterError
-from mechanisms.motion import AngleMotion, PointMotion
+from mechanisms.core.errors import AssemblyError, InvalidParameterError
+from mechanisms.core.motion import AngleMotion, PointMotion
 from mechanisms.verify import central_difference
 from strategies import finite
 
@@ -218,6 +218,6 @@ def test_angle_between_coupler_and_guide(crank, ratio, omega, alpha):
 
 
 def test_angle_from_distance_out_of_reach():
-    from mechanisms.motion import Motion
+    from mechanisms.core.motion import Motion
     with pytest.raises(AssemblyError, match="cannot reach"):
         angle_from_distance(Motion(np.array([0.5, 1.5])), 1.0)

@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.analysis import plans
-from mechanisms.errors import InvalidParameterError
+from mechanisms.linkages import four_bar
+from mechanisms.core.errors import InvalidParameterError
 from strategies import crank_rockers, crank_slider_geometries, branches, finite, slotted_lever_geometries
 
 EXAMPLE = mech.CrankSlider(crank=0.08, rod=0.3)          # example 5.2 of the textbook page
@@ -204,7 +205,7 @@ def test_four_bar_plans_equal_the_closed_form(geometry, phi, omega, alpha):
     _check_points(vp, sol, ["A", "B"], "velocity")
     _check_points(ap, sol, ["A", "B"], "acceleration")
     # the lecture's Cramer's rule, a formula of its own, for the angular rates
-    psi_t, xi_t, psi_tt, xi_tt = (float(x) for x in mech.four_bar.cramer_rates(
+    psi_t, xi_t, psi_tt, xi_tt = (float(x) for x in four_bar.cramer_rates(
         phi, psi, xi, crank, coupler, rocker, omega, alpha))
     scale_w, scale_e = omega * (1 + crank / coupler + crank / rocker), omega**2 + abs(alpha)
     assert vp.rates["coupler"] == pytest.approx(psi_t, abs=1e-7 * scale_w)

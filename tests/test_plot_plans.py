@@ -1,4 +1,4 @@
-"""Tests of mechanisms.plot_plans: plans drawn to scale and lettered, instant centres drawn."""
+"""Tests of mechanisms.plot.plans: plans drawn to scale and lettered, instant centres drawn."""
 
 import matplotlib.colors as mcolors
 import matplotlib.pyplot as plt
@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import mechanisms as mech
-from mechanisms import plot, plot_plans
+from mechanisms import plot
+from mechanisms.plot import plans as plot_plans
 from mechanisms.analysis import plans
 
 EXAMPLE = mech.CrankSlider(crank=0.08, rod=0.3)          # example 5.2 of the textbook page

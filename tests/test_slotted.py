@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mechanisms as mech
-from mechanisms.errors import AssemblyError, DeadCentreWarning, InvalidParameterError
+from mechanisms.core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError
 from mechanisms.verify import constraint_residual, distance_deviation, generic_errors
 from strategies import branches, finite, slotted_lever_geometries
 

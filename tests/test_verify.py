@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechanisms import verify
-from mechanisms.errors import AssemblyError, DeadCentreWarning
-from mechanisms.motion import Motion
+from mechanisms.core.errors import AssemblyError, DeadCentreWarning
+from mechanisms.core.motion import Motion
 from mechanisms_for_tests import ScotchYoke
 
 PHI = np.radians(np.arange(0, 360, 15.0))

@@ -1,0 +1,274 @@
+"""Layer 4: analysis of the crank-slider (chapter 3).
+
+The condition for a full crank revolution and the crank-angle range otherwise, the two dead-centre
+positions and the stroke, the time ratio of the offset mechanism, the extreme velocities and
+accelerations of the slider, and the approximate (series) slider formula of the textbooks.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..linkages.crank_slider import CrankSlider
+from ..core.errors import AssemblyError, InvalidParameterError
+from ..core.validate import require_finite, require_finite_array
+from ..core.motion import Motion
+
+__all__ = [
+    "full_revolution",
+    "crank_angle_range",
+    "DeadCentres",
+    "dead_centres",
+    "stroke",
+    "TimeRatio",
+    "time_ratio",
+    "Extreme",
+    "SliderExtremes",
+    "slider_extremes",
+    "approximate_slider",
+]
+
+
+def full_revolution(mechanism: CrankSlider) -> bool:
+    """True if the crank turns a full revolution: L2 ≥ L1 + |e|.
+
+    Notes
+    -----
+    The crank pin is at most L1 + |e| from the guide (when the crank is perpendicular to the guide and
+    points away from it); the rod reaches the guide from there only if L2 ≥ L1 + |e|. With equality
+    the rod is perpendicular to the guide at that one position (a change point, see chapter 3).
+    """
+    return mechanism.rod >= mechanism.crank + abs(mechanism.offset)
+
+
+def crank_angle_range(mechanism: CrankSlider) -> list[tuple[float, float]] | None:
+    """Crank-angle intervals (rad) in which the mechanism assembles; ``None`` for a full revolution.
+
+    See :func:`mechanisms.crank_slider.assembly_ranges`: one interval if one side of the guide limits
+    the crank, two if both do (L2 < L1 − |e|).
+    """
+    return mechanism.assembly_ranges
+
+
+def _require_full_revolution(mechanism: CrankSlider, what: str) -> None:
+    if not full_revolution(mechanism):
+        raise AssemblyError(
+            f"{what} is defined here for a crank that turns fully, which needs rod ≥ crank + |offset|: got rod = "
+            f"{mechanism.rod:g} m, crank + |offset| = {mechanism.crank + abs(mechanism.offset):g} m; the crank "
+            "only rocks, between the ends of its assembly range (crank_angle_range)")
+
+
+@dataclass(frozen=True)
+class DeadCentres:
+    """The two dead-centre (extreme) positions of the slider.
+
+    Attributes
+    ----------
+    phi_outer, phi_inner : float
+        Crank angles (rad, in (−π, π]) with crank and coupler in line, stretched (outer: the slider
+        farthest from the crank pivot) and folded (inner: nearest).
+    s_outer, s_inner : float
+        The slider's positions s = x_B there (m).
+    """
+
+    phi_outer: float
+    phi_inner: float
+    s_outer: float
+    s_inner: float
+
+    @property
+    def stroke(self) -> float:
+        """The stroke |s_outer − s_inner| (m)."""
+        return abs(self.s_outer - self.s_inner)
+
+
+def dead_centres(mechanism: CrankSlider) -> DeadCentres:
+    """The dead-centre positions: crank and coupler in line, the slider at rest.
+
+    Notes
+    -----
+    Stretched: |OB| = L1 + L2, so ``x_B = b·√((L1 + L2 − e)(L1 + L2 + e))`` on the guide y = e and the
+    crank points at B, φ_outer = atan2(e, x_B). Folded: |OB| = L2 − L1, ``x_B = b·√((L2 − L1 − |e|)(L2 −
+    L1 + |e|))`` and the crank points away from B, φ_inner = atan2(e, x_B) + π (b is the branch).
+    The products under the roots avoid cancellation.
+    """
+    _require_full_revolution(mechanism, "the pair of dead centres")
+    l1, l2, e, b = mechanism.crank, mechanism.rod, mechanism.offset, mechanism.branch
+    s_outer = b * math.sqrt((l1 + l2 - e) * (l1 + l2 + e))
+    s_inner = b * math.sqrt(max((l2 - l1 - abs(e)) * (l2 - l1 + abs(e)), 0.0))
+    phi_outer = math.atan2(e, s_outer)
+    phi_inner = math.atan2(e, s_inner) + math.pi
+    if phi_inner > math.pi:
+        phi_inner -= 2.0 * math.pi
+    return DeadCentres(phi_outer, phi_inner, s_outer, s_inner)
+
+
+def stroke(mechanism: CrankSlider) -> float:
+    """The stroke H (m): the distance between the slider's two dead-centre positions.
+
+    Notes
+    -----
+    ``H = √((L1 + L2)² − e²) − √((L2 − L1)² − e²)``; for the axial mechanism H = 2 L1.
+    """
+    return dead_centres(mechanism).stroke
+
+
+@dataclass(frozen=True)
+class TimeRatio:
+    """The time ratio of the crank-slider at constant crank speed.
+
+    Attributes
+    ----------
+    ratio : float
+        K = (slow stroke angle)/(fast stroke angle) = (π + θ)/(π − θ) ≥ 1.
+    outward_angle : float
+        Crank angle (rad) turned while the slider moves from the inner to the outer dead centre.
+    return_angle : float
+        Crank angle (rad) turned while it moves back; the two add up to 2π.
+    overlap_angle : float
+        θ = |outward − π| (rad), the crank angle between the two dead-centre positions' extensions.
+    """
+
+    ratio: float
+    outward_angle: float
+    return_angle: float
+    overlap_angle: float
+
+
+def time_ratio(mechanism: CrankSlider, direction: int = 1) -> TimeRatio:
+    """Time ratio K of the (offset) crank-slider for a crank turning in ``direction`` (+1: ω > 0).
+
+    Notes
+    -----
+    The strokes take the crank angles between the dead centres: counter-clockwise from φ_inner to
+    φ_outer for the outward stroke. For the axial mechanism both are π and K = 1; an offset makes one
+    stroke slower, ``θ = arcsin(e/(L2 − L1)) − arcsin(e/(L1 + L2))`` for branch +1 (computed here from
+    the dead-centre angles by atan2).
+    """
+    if direction not in (1, -1):
+        raise ValueError(f"direction must be +1 (counter-clockwise) or -1: got {direction!r}")
+    centres = dead_centres(mechanism)
+    ccw = (centres.phi_outer - centres.phi_inner) % (2.0 * math.pi)
+    outward = ccw if direction == 1 else 2.0 * math.pi - ccw
+    back = 2.0 * math.pi - outward
+    return TimeRatio(max(outward, back) / min(outward, back), outward, back, abs(outward - math.pi))
+
+
+@dataclass(frozen=True)
+class Extreme:
+    """An extreme value of a quantity over a crank revolution and the crank angle (rad) where it occurs."""
+
+    phi: float
+    value: float
+
+
+@dataclass(frozen=True)
+class SliderExtremes:
+    """Largest and smallest slider velocity (m/s) and acceleration (m/s²) over a revolution."""
+
+    velocity_max: Extreme
+    velocity_min: Extreme
+    acceleration_max: Extreme
+    acceleration_min: Extreme
+
+
+def _golden_extremes(function, centres: np.ndarray, signs: np.ndarray, half_width: float,
+                     iterations: int = 80) -> np.ndarray:
+    """Golden-section search for the maxima of ``sign·f`` in [c − w, c + w], vectorized over the searches."""
+    ratio = (math.sqrt(5.0) - 1.0) / 2.0
+    lo, hi = centres - half_width, centres + half_width
+    x1, x2 = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
+    f1, f2 = signs * function(x1), signs * function(x2)
+    for _ in range(iterations):
+        left = f1 >= f2  # the maximum lies in [lo, x2]
+        hi = np.where(left, x2, hi)
+        lo = np.where(left, lo, x1)
+        x1_new = np.where(left, hi - ratio * (hi - lo), x2)
+        x2_new = np.where(left, x1, lo + ratio * (hi - lo))
+        x1, x2 = x1_new, x2_new
+        f1, f2 = signs * function(x1), signs * function(x2)
+    return 0.5 * (lo + hi)
+
+
+def slider_extremes(mechanism: CrankSlider, omega: float = 1.0, samples: int = 720) -> SliderExtremes:
+    """Extreme slider velocities and accelerations at constant crank speed ω.
+
+    Parameters
+    ----------
+    mechanism : CrankSlider
+        A mechanism whose crank turns fully with L2 > L1 + |e| (otherwise the acceleration is unbounded).
+    omega : float
+        Crank speed φ_t (rad/s); velocities scale with ω and accelerations with ω².
+    samples : int
+        Crank positions of the coarse search; each extreme is then refined by golden-section search to
+        round-off.
+
+    Notes
+    -----
+    The velocity is extreme where the acceleration vanishes, which has no closed form for the exact
+    mechanism; the search uses the exact closed-form velocities and accelerations.
+    """
+    omega = require_finite("omega", omega)
+    if omega == 0.0:
+        raise InvalidParameterError("omega", omega, "a crank speed other than 0 rad/s (at rest there are no extremes)")
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 8:
+        raise InvalidParameterError("samples", samples, "a whole number ≥ 8 of crank positions")
+    if not mechanism.rod > mechanism.crank + abs(mechanism.offset):
+        _require_full_revolution(mechanism, "the extreme velocity and acceleration")
+        raise AssemblyError("the slider's acceleration is unbounded where the rod is perpendicular to the guide "
+                            "(rod = crank + |offset|): no extreme acceleration")
+    phi = np.linspace(-math.pi, math.pi, samples, endpoint=False)
+    sol = mechanism.solve(phi, omega, 0.0, order=2)
+    v, a = sol.slider("B").velocity, sol.slider("B").acceleration
+    starts = phi[[np.argmax(v), np.argmin(v), np.argmax(a), np.argmin(a)]]
+    signs = np.array([1.0, -1.0, 1.0, -1.0])
+
+    def pick(angles):
+        s = mechanism.solve(angles, omega, 0.0, order=2).slider("B")
+        return np.concatenate([s.velocity[:2], s.acceleration[2:]])
+
+    best = _golden_extremes(pick, starts, signs, 2.0 * math.pi / samples)
+    values = pick(best)
+    wrapped = (best + math.pi) % (2.0 * math.pi) - math.pi
+    return SliderExtremes(*(Extreme(float(p), float(f)) for p, f in zip(wrapped, values)))
+
+
+def approximate_slider(mechanism: CrankSlider, phi: ArrayLike, omega: float = 1.0) -> Motion:
+    """The textbooks' approximate (series) slider motion at constant crank speed ω.
+
+    Parameters
+    ----------
+    mechanism : CrankSlider
+    phi : array_like
+        Crank angles φ (rad).
+    omega : float
+        Crank speed φ_t (rad/s).
+
+    Returns
+    -------
+    Motion
+        s (m), v (m/s), a (m/s²) from the expansion of the exact half-chord to second order in the
+        crank pin's distance from the guide.
+
+    Notes
+    -----
+    ``√(L2² − h²) ≈ L2 − h²/(2 L2)`` with h = L1 sin φ − e gives
+    ``s ≈ L1 cos φ + b [L2 − (L1 sin φ − e)²/(2 L2)]``,
+    ``v ≈ −ω L1 [sin φ + b cos φ (L1 sin φ − e)/L2]``,
+    ``a ≈ −ω² L1 [cos φ + b (L1 cos 2φ + e sin φ)/L2]``.
+    For the axial mechanism (e = 0, b = +1) with λ = L1/L2 these are the familiar
+    ``s ≈ L2 + L1 (cos φ − (λ/4)(1 − cos 2φ))``, ``v ≈ −ω L1 (sin φ + (λ/2) sin 2φ)``,
+    ``a ≈ −ω² L1 (cos φ + λ cos 2φ)``. The neglected term of s is −h⁴/(8 L2³), about L1 λ³/8.
+    """
+    phi = require_finite_array("phi", phi, "crank angles in rad")
+    omega = require_finite("omega", omega)
+    l1, l2, e, b = mechanism.crank, mechanism.rod, mechanism.offset, mechanism.branch
+    h = l1 * np.sin(phi) - e
+    s = l1 * np.cos(phi) + b * (l2 - h**2 / (2.0 * l2))
+    v = -omega * l1 * (np.sin(phi) + b * np.cos(phi) * h / l2)
+    a = -omega**2 * l1 * (np.cos(phi) + b * (l1 * np.cos(2.0 * phi) + e * np.sin(phi)) / l2)
+    return Motion(s, v, a)

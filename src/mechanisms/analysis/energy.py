@@ -1,0 +1,516 @@
+"""Layer 4: energy and power of a mechanism (chapter 6).
+
+After the kinematic analysis the lecture turns to the centres of mass of the links, their
+kinetic and potential energy, Newton's inertia forces and the rate of change (power) of both
+energies. This module does that for any mechanism of the package, from its solution:
+
+* the mass properties of a body: :class:`LinkMass` (mass, centre of mass fixed to the body,
+  moment of inertia about it), given per body name — a link (``"crank"``, ``"coupler"`` …) or
+  a joint that carries a sliding block (``"B"``), which translates with that joint;
+* the motion of each centre of mass, the kinetic energy T and potential energy V (gravity and
+  optional springs to the frame) with their exact time derivatives (power);
+* the inertia forces and moments of d'Alembert, ``−m a_S`` and ``−J_S α``;
+* applied loads (:class:`Force`, :class:`Torque`) and their power;
+* the reduced (equivalent) moment of inertia J_red(φ) with its exact derivative dJ_red/dφ, the
+  reduced torque of the loads, and the driving torque from the power balance.
+
+Every derivative is exact: it comes from the velocities and accelerations of the solution, never
+from differences. Units: kg, m, s; energies in J, powers in W, torques in N·m.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Mapping, Sequence, Union
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..linkages.base import Mechanism, Solution
+from ..core.errors import InvalidParameterError, MechanismError
+from ..core.motion import AngleMotion, Motion, PointMotion, polar, translated_point
+
+__all__ = [
+    "STANDARD_GRAVITY",
+    "LinkMass",
+    "Force",
+    "Torque",
+    "Spring",
+    "InertiaLoad",
+    "body_point",
+    "body_angle",
+    "centre_of_mass",
+    "kinetic_energies",
+    "kinetic_energy",
+    "potential_energy",
+    "inertia_forces",
+    "load_values",
+    "applied_power",
+    "reduced_inertia",
+    "reduced_torque",
+    "potential_torque",
+    "driving_torque",
+    "energy_balance",
+]
+
+STANDARD_GRAVITY = 9.80665
+"""Standard acceleration of gravity g (m/s²); gravity acts along −y."""
+
+Value = Union[float, complex, np.ndarray, Callable[[Solution], np.ndarray]]
+
+
+def _finite(name: str, value) -> float:
+    value = float(value)
+    if not math.isfinite(value):
+        raise InvalidParameterError(name, value, "a finite number")
+    return value
+
+
+def _non_negative(name: str, value) -> float:
+    value = _finite(name, value)
+    if value < 0.0:
+        raise InvalidParameterError(name, value, "a finite number ≥ 0")
+    return value
+
+
+@dataclass(frozen=True)
+class LinkMass:
+    """Mass properties of one body of a mechanism.
+
+    Parameters
+    ----------
+    mass : float
+        m (kg), ≥ 0.
+    along, left : float
+        The centre of mass S in the body's frame (m): ``along`` the link from its first joint,
+        ``left`` of it (as in :meth:`~mechanisms.base.Solution.point_on`). For a sliding block
+        (a body named by its joint) the offset from the joint; usually 0.
+    inertia : float
+        J_S (kg·m²), ≥ 0: moment of inertia about the axis through S normal to the plane.
+        A translating block does not turn, so its J_S plays no part.
+
+    Notes
+    -----
+    The moment of inertia about the first joint follows from Steiner's (parallel-axis) theorem,
+    ``J_O = J_S + m (along² + left²)`` (chapter 6).
+    """
+
+    mass: float
+    along: float = 0.0
+    left: float = 0.0
+    inertia: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "mass", _non_negative("mass", self.mass))
+        object.__setattr__(self, "inertia", _non_negative("inertia", self.inertia))
+        object.__setattr__(self, "along", _finite("along", self.along))
+        object.__setattr__(self, "left", _finite("left", self.left))
+
+    def inertia_about_joint(self) -> float:
+        """J about the body's first joint (kg·m²), by the parallel-axis theorem."""
+        return self.inertia + self.mass * (self.along**2 + self.left**2)
+
+
+@dataclass(frozen=True)
+class Force:
+    """An applied force on a body, at a point fixed to it.
+
+    Parameters
+    ----------
+    body : str
+        A link name (``"coupler"``) or a joint with a sliding block (``"B"``).
+    force : complex, array or callable
+        ``Fx + i Fy`` (N): a constant, an array over the crank positions, or a function of the
+        solution returning that array (e.g. a force that acts during one stroke only).
+    along, left : float
+        The point of application in the body's frame (m), as for :class:`LinkMass`.
+    """
+
+    body: str
+    force: Value
+    along: float = 0.0
+    left: float = 0.0
+
+
+@dataclass(frozen=True)
+class Torque:
+    """An applied torque (N·m, counter-clockwise positive) on a link.
+
+    ``torque`` is a constant, an array over the crank positions or a function of the solution.
+    A torque on a translating block does no work (the guide takes it up).
+    """
+
+    body: str
+    torque: Value
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A linear spring from a point of a body to a fixed point of the frame.
+
+    Parameters
+    ----------
+    body : str
+        The body (link or block) it is attached to.
+    anchor : complex
+        The fixed end ``x + iy`` (m).
+    stiffness : float
+        k (N/m), ≥ 0.
+    free_length : float
+        ℓ0 (m), ≥ 0: the length at which it carries no force.
+    along, left : float
+        The attachment point in the body's frame (m).
+
+    Notes
+    -----
+    ``V = k (ℓ − ℓ0)²/2`` with ℓ the current length; the force on the body is
+    ``−k (ℓ − ℓ0) e``, e the unit vector from the anchor to the attachment point.
+    """
+
+    body: str
+    anchor: complex
+    stiffness: float
+    free_length: float = 0.0
+    along: float = 0.0
+    left: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "stiffness", _non_negative("stiffness", self.stiffness))
+        object.__setattr__(self, "free_length", _non_negative("free_length", self.free_length))
+        object.__setattr__(self, "anchor", complex(self.anchor))
+
+    def length(self, solution: Solution) -> Motion:
+        """The current length ℓ (m) with its time derivatives."""
+        end = body_point(solution, self.body, self.along, self.left)
+        length, _ = polar(end - self.anchor)
+        return length
+
+    def force(self, solution: Solution) -> np.ndarray:
+        """The spring's force on the body ``Fx + i Fy`` (N) at each position."""
+        end = body_point(solution, self.body, self.along, self.left).value
+        arm = end - self.anchor
+        length = np.abs(arm)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            unit = np.where(length > 0.0, arm / length, 0.0)
+        return -self.stiffness * (length - self.free_length) * unit
+
+
+@dataclass(frozen=True)
+class InertiaLoad:
+    """Newton's inertia force and moment of a body (d'Alembert), at its centre of mass.
+
+    Attributes
+    ----------
+    point : ndarray of complex
+        The centre of mass S (m).
+    force : ndarray of complex
+        ``Φ = −m a_S`` (N).
+    moment : ndarray
+        ``M_Φ = −J_S α`` (N·m), zero for a translating block.
+    """
+
+    point: np.ndarray
+    force: np.ndarray
+    moment: np.ndarray
+
+
+# --- bodies ---------------------------------------------------------------------------------
+
+def _is_link(solution: Solution, body: str) -> bool:
+    if body in solution.angle_names:
+        return True
+    if body in solution.point_names:
+        return False
+    raise KeyError(f"no body named {body!r}: a body is a link ({', '.join(solution.angle_names)}) "
+                   f"or a joint with a sliding block ({', '.join(solution.point_names)})")
+
+
+def body_point(solution: Solution, body: str, along: float = 0.0, left: float = 0.0) -> PointMotion:
+    """A point fixed to a body: a link (``point_on``) or a translating block at a joint.
+
+    Parameters
+    ----------
+    solution : Solution
+        The kinematics.
+    body : str
+        A link name or a joint name (a block that translates with the joint).
+    along, left : float
+        The point in the body's frame (m); for a block, the offset ``along + i left`` from the joint.
+    """
+    if _is_link(solution, body):
+        return solution.point_on(body, along, left)
+    return translated_point(solution.point(body), complex(along, left))
+
+
+def body_angle(solution: Solution, body: str) -> AngleMotion | None:
+    """The angle of a link, or ``None`` for a translating block (it does not turn)."""
+    return solution.angle(body) if _is_link(solution, body) else None
+
+
+def centre_of_mass(solution: Solution, body: str, properties: LinkMass) -> PointMotion:
+    """The motion of a body's centre of mass S (m, m/s, m/s²)."""
+    return body_point(solution, body, properties.along, properties.left)
+
+
+def _require(solution: Solution, order: int, what: str) -> None:
+    if solution.order < order:
+        need = ("velocities", "accelerations")[order - 1]
+        raise MechanismError(f"{what} needs {need}: solve with order={order} (got order={solution.order})")
+
+
+# --- kinetic energy ---------------------------------------------------------------------------
+
+def kinetic_energies(solution: Solution, masses: Mapping[str, LinkMass]) -> dict[str, Motion]:
+    """The kinetic energy of each body, with its time derivative where known.
+
+    Parameters
+    ----------
+    solution : Solution
+        Kinematics of order ≥ 1 (order 2 for the derivative).
+    masses : mapping
+        ``{body: LinkMass}``.
+
+    Returns
+    -------
+    dict of Motion
+        ``T_i = m v_S²/2 + J_S ω²/2`` (J) and ``dT_i/dt = m v_S·a_S + J_S ω α`` (W).
+
+    Notes
+    -----
+    König's theorem: the energy of the motion of the centre of mass plus that of the rotation
+    about it (chapter 6). With points as complex numbers ``v·a = Re(conj(v) a)``.
+    """
+    _require(solution, 1, "the kinetic energy")
+    result = {}
+    for body, props in masses.items():
+        centre = centre_of_mass(solution, body, props)
+        angle = body_angle(solution, body)
+        v = centre.velocity
+        energy = 0.5 * props.mass * np.abs(v) ** 2
+        power = props.mass * np.real(np.conj(v) * centre.acceleration) if solution.order >= 2 else None
+        if angle is not None and props.inertia:
+            energy = energy + 0.5 * props.inertia * angle.omega**2
+            if power is not None:
+                power = power + props.inertia * angle.omega * angle.alpha
+        result[body] = Motion(energy, power)
+    return result
+
+
+def kinetic_energy(solution: Solution, masses: Mapping[str, LinkMass]) -> Motion:
+    """The kinetic energy T of the mechanism (J) and, at order 2, its power dT/dt (W).
+
+    The sum over the bodies of :func:`kinetic_energies`.
+    """
+    parts = list(kinetic_energies(solution, masses).values())
+    shape = np.shape(solution.phi)
+    energy = sum((p.value for p in parts), np.zeros(shape))
+    if solution.order < 2:
+        return Motion(energy)
+    return Motion(energy, sum((p.velocity for p in parts), np.zeros(shape)))
+
+
+# --- potential energy ---------------------------------------------------------------------------
+
+def potential_energy(solution: Solution, masses: Mapping[str, LinkMass], gravity: float = STANDARD_GRAVITY,
+                     springs: Sequence[Spring] = ()) -> Motion:
+    """The potential energy V (J) of gravity and springs and, at order ≥ 1, its power dV/dt (W).
+
+    Parameters
+    ----------
+    solution : Solution
+        Kinematics (order 0 for V only).
+    masses : mapping
+        ``{body: LinkMass}``.
+    gravity : float
+        g (m/s²), acting along −y; 0 for a mechanism that works in a horizontal plane.
+    springs : sequence of Spring
+        Springs to the frame.
+
+    Returns
+    -------
+    Motion
+        ``V = Σ m g y_S + Σ k (ℓ − ℓ0)²/2`` (zero level y = 0) and
+        ``dV/dt = Σ m g (y_S)_t + Σ k (ℓ − ℓ0) ℓ_t``.
+    """
+    gravity = _finite("gravity", gravity)
+    shape = np.shape(solution.phi)
+    energy = np.zeros(shape)
+    power = np.zeros(shape) if solution.order >= 1 else None
+    for body, props in masses.items():
+        centre = centre_of_mass(solution, body, props)
+        energy = energy + props.mass * gravity * centre.y
+        if power is not None:
+            power = power + props.mass * gravity * centre.velocity.imag
+    for spring in springs:
+        length = spring.length(solution)
+        stretch = length.value - spring.free_length
+        energy = energy + 0.5 * spring.stiffness * stretch**2
+        if power is not None:
+            power = power + spring.stiffness * stretch * length.velocity
+    return Motion(energy, power)
+
+
+# --- inertia forces -----------------------------------------------------------------------------
+
+def inertia_forces(solution: Solution, masses: Mapping[str, LinkMass]) -> dict[str, InertiaLoad]:
+    """Newton's inertia force ``−m a_S`` and moment ``−J_S α`` of each body (d'Alembert).
+
+    Requires a solution of order 2. Added to the applied and joint forces of a body, they
+    make a system in equilibrium (kinetostatics, :mod:`mechanisms.analysis.kinetostatics`).
+    """
+    _require(solution, 2, "the inertia forces")
+    result = {}
+    for body, props in masses.items():
+        centre = centre_of_mass(solution, body, props)
+        angle = body_angle(solution, body)
+        moment = (-props.inertia * angle.alpha if angle is not None
+                  else np.zeros(np.shape(solution.phi)))
+        result[body] = InertiaLoad(centre.value, -props.mass * centre.acceleration, moment)
+    return result
+
+
+# --- loads and their power ----------------------------------------------------------------------
+
+def load_values(load: Force | Torque, solution: Solution) -> np.ndarray:
+    """The force (complex, N) or torque (N·m) of a load at each crank position."""
+    value = load.force if isinstance(load, Force) else load.torque
+    if callable(value):
+        value = value(solution)
+    dtype = complex if isinstance(load, Force) else float
+    return np.broadcast_to(np.asarray(value, dtype=dtype), np.shape(solution.phi))
+
+
+def applied_power(solution: Solution, loads: Sequence[Force | Torque]) -> np.ndarray:
+    """The power of applied loads (W): ``Σ F·v_P + Σ M ω``.
+
+    Positive when a load drives the mechanism, negative when the mechanism works against it
+    (a resistance). Gravity and springs are not loads here: they are in the potential energy.
+    """
+    _require(solution, 1, "the power of the loads")
+    power = np.zeros(np.shape(solution.phi))
+    for load in loads:
+        if isinstance(load, Force):
+            point = body_point(solution, load.body, load.along, load.left)
+            power = power + np.real(np.conj(point.velocity) * load_values(load, solution))
+        elif isinstance(load, Torque):
+            angle = body_angle(solution, load.body)
+            if angle is not None:
+                power = power + load_values(load, solution) * angle.omega
+        else:
+            raise TypeError(f"a load is a Force or a Torque, not {type(load).__name__}")
+    return power
+
+
+def _crank_speed(solution: Solution) -> np.ndarray:
+    return solution.angle("crank").omega
+
+
+# --- reduction to the crank ---------------------------------------------------------------------
+
+def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass],
+                    phi: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """The reduced (equivalent) moment of inertia J_red(φ) at the crank and its derivative dJ_red/dφ.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        Any one-degree-of-freedom mechanism of the package.
+    masses : mapping
+        ``{body: LinkMass}``.
+    phi : array_like
+        Crank angles φ (rad).
+
+    Returns
+    -------
+    J : ndarray
+        ``J_red = Σ m |dr_S/dφ|² + Σ J_S (dθ/dφ)²`` (kg·m²), so that ``T = J_red φ_t²/2``.
+    dJ : ndarray
+        ``dJ_red/dφ = Σ 2 m (dr_S/dφ)·(d²r_S/dφ²) + Σ 2 J_S (dθ/dφ)(d²θ/dφ²)`` (kg·m²/rad).
+
+    Notes
+    -----
+    The velocity ratios dr/dφ are the velocities of the solution at φ_t = 1, and the second
+    derivatives d²r/dφ² its accelerations at φ_t = 1, φ_tt = 0, because ``r_tt = r'' φ_t² + r' φ_tt``.
+    Both are exact: no differences are taken (chapter 6).
+    """
+    solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=2)
+    parts = kinetic_energies(solution, masses).values()
+    shape = np.shape(solution.phi)
+    # at φ_t = 1: T = J_red/2 and dT/dt = dT/dφ = (dJ_red/dφ)/2
+    energy = sum((p.value for p in parts), np.zeros(shape))
+    slope = sum((p.velocity for p in parts), np.zeros(shape))
+    return 2.0 * energy, 2.0 * slope
+
+
+def reduced_torque(mechanism: Mechanism, loads: Sequence[Force | Torque], phi: ArrayLike) -> np.ndarray:
+    """The reduced torque of applied loads at the crank, Q(φ) = P/φ_t (N·m).
+
+    The generalized force of the loads: their power at φ_t = 1. The loads are evaluated on the
+    solution at φ_t = 1, φ_tt = 0, so a load may depend on the position and on the direction of
+    motion for a crank turning counter-clockwise.
+    """
+    solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=1)
+    return applied_power(solution, loads)
+
+
+def potential_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: ArrayLike,
+                     gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = ()) -> np.ndarray:
+    """dV/dφ (N·m): the torque at the crank that holds gravity and the springs in balance.
+
+    The power dV/dt at φ_t = 1, exact.
+    """
+    solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=1)
+    return potential_energy(solution, masses, gravity, springs).velocity
+
+
+def driving_torque(solution: Solution, masses: Mapping[str, LinkMass], loads: Sequence[Force | Torque] = (),
+                   gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = ()) -> np.ndarray:
+    """The driving torque on the crank from the power balance (N·m).
+
+    Parameters
+    ----------
+    solution : Solution
+        Kinematics of order 2 for the given crank motion φ, φ_t ≠ 0, φ_tt.
+    masses, loads, gravity, springs
+        As for :func:`kinetic_energy`, :func:`applied_power` and :func:`potential_energy`.
+
+    Returns
+    -------
+    ndarray
+        ``M_d = (dT/dt + dV/dt − P_loads)/φ_t``.
+
+    Notes
+    -----
+    With ideal (frictionless) joints the joint forces do no work, so the power of the driving
+    torque and of the loads goes into the change of the two energies:
+    ``M_d φ_t + P_loads = dT/dt + dV/dt`` (chapter 6). Where φ_t = 0 use the Lagrange form of
+    :func:`mechanisms.analysis.dynamics.required_torque`.
+    """
+    _require(solution, 2, "the driving torque")
+    speed = _crank_speed(solution)
+    if np.any(speed == 0.0):
+        raise InvalidParameterError("omega", 0.0, "non-zero for the power balance (divide by φ_t); "
+                                    "use dynamics.required_torque where the crank is at rest")
+    change = kinetic_energy(solution, masses).velocity + potential_energy(solution, masses, gravity, springs).velocity
+    return (change - applied_power(solution, loads)) / speed
+
+
+def energy_balance(solution: Solution, masses: Mapping[str, LinkMass], drive: ArrayLike,
+                   loads: Sequence[Force | Torque] = (), gravity: float = STANDARD_GRAVITY,
+                   springs: Sequence[Spring] = ()) -> np.ndarray:
+    """The residual of the power balance (W): ``M_d φ_t + P_loads − dT/dt − dV/dt``.
+
+    Parameters
+    ----------
+    drive : float or array_like
+        The driving torque M_d on the crank (N·m) found in some other way (Newton–Euler).
+
+    Returns
+    -------
+    ndarray
+        Zero up to round-off when ``drive`` is right.
+    """
+    _require(solution, 2, "the energy balance")
+    change = kinetic_energy(solution, masses).velocity + potential_energy(solution, masses, gravity, springs).velocity
+    return np.asarray(drive) * _crank_speed(solution) + applied_power(solution, loads) - change

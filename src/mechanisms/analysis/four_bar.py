@@ -1,0 +1,302 @@
+"""Layer 4: analysis of the four-bar — Grashof class, range of the crank, limit positions of the
+rocker, time ratio, transmission angle and coupler curves (chapter 4).
+
+Notation: L1 crank, L2 coupler, L3 rocker, d = |OC| frame; s, l the shortest and longest of the
+four lengths, p, q the other two. The transmission angle μ is the angle at B between the
+coupler and the rocker, 0 ≤ μ ≤ π.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..linkages.base import Solution
+from ..core.errors import AssemblyError
+from ..core.validate import require_length
+from ..linkages.four_bar import FourBar, assembly_intervals
+from ..core.motion import PointMotion
+
+__all__ = [
+    "GrashofClass",
+    "grashof_class",
+    "crank_range",
+    "LimitPositions",
+    "limit_positions",
+    "transmission_angle",
+    "transmission_extremes",
+    "coupler_curve",
+    "StraightPart",
+    "best_line",
+    "straight_part",
+]
+
+_NAMES = {"crank": "crank-rocker", "frame": "double-crank", "coupler": "double-rocker", "rocker": "rocker-crank"}
+
+
+@dataclass(frozen=True)
+class GrashofClass:
+    """Grashof class of a four-bar.
+
+    Attributes
+    ----------
+    name : str
+        ``crank-rocker`` (crank shortest), ``double-crank`` (frame shortest), ``double-rocker``
+        (coupler shortest), ``rocker-crank`` (rocker shortest: the output turns fully, the
+        input rocks) when s + l < p + q; ``change point`` when s + l = p + q; ``triple rocker``
+        when s + l > p + q.
+    shortest : str
+        The role of the shortest link (``crank``, ``coupler``, ``rocker`` or ``frame``).
+    margin : float
+        (p + q) − (s + l) (m): positive for Grashof linkages, zero at a change point.
+    crank_rotates : bool
+        The crank (input) can turn a full revolution.
+    """
+
+    name: str
+    shortest: str
+    margin: float
+    crank_rotates: bool
+
+
+def grashof_class(crank: float, coupler: float, rocker: float, frame: float,
+                  tolerance: float = 1e-9) -> GrashofClass:
+    """Grashof's classification from the four lengths (m).
+
+    ``tolerance`` is relative to the sum of the lengths: within it, s + l = p + q counts as a
+    change point. If two links are equally shortest, the first in the order crank, frame,
+    coupler, rocker names the class.
+    """
+    lengths = {name: require_length(name, value)
+               for name, value in (("crank", crank), ("frame", frame), ("coupler", coupler), ("rocker", rocker))}
+    ordered = sorted(lengths.values())
+    margin = (ordered[1] + ordered[2]) - (ordered[0] + ordered[3])
+    shortest = min(lengths, key=lengths.get)
+    scale = sum(ordered)
+    if abs(margin) <= tolerance * scale:
+        name = "change point"
+    elif margin > 0:
+        name = _NAMES[shortest]
+    else:
+        name = "triple rocker"
+    rotates = margin >= -tolerance * scale and shortest in ("crank", "frame")
+    return GrashofClass(name, shortest, margin, rotates)
+
+
+def crank_range(mechanism: FourBar) -> list[tuple[float, float]]:
+    """Crank-angle intervals (rad) in which the four-bar assembles (analytic, chapter 4)."""
+    return assembly_intervals(mechanism.crank, mechanism.coupler, mechanism.rocker, mechanism.frame)
+
+
+@dataclass(frozen=True)
+class LimitPositions:
+    """The two limit positions of the rocker of a crank-rocker.
+
+    Attributes
+    ----------
+    phi : ndarray, shape (2,)
+        Crank angles (rad) at the extended (crank and coupler in line, A between O and B)
+        and the folded position, in [0, 2π).
+    xi : ndarray, shape (2,)
+        Rocker angles (rad) there.
+    swing : float
+        The rocker's angle of swing |ξ_ext − ξ_fold| (rad).
+    forward : float
+        Crank angle (rad) turned from the extended to the folded position (φ increasing).
+    backward : float
+        Crank angle (rad) from the folded back to the extended position, 2π − forward.
+    time_ratio : float
+        K = max(forward, backward)/min(forward, backward) ≥ 1 at constant crank speed.
+    """
+
+    phi: np.ndarray
+    xi: np.ndarray
+    swing: float
+    forward: float
+    backward: float
+    time_ratio: float
+
+
+def limit_positions(mechanism: FourBar) -> LimitPositions:
+    """Limit (dead-centre) positions of the rocker and the time ratio of a crank-rocker.
+
+    Notes
+    -----
+    The rocker turns back where ξ_t = 0, that is sin(ψ − φ) = 0: crank and coupler in line.
+    Then |OB| = L2 + L1 (extended) or |L2 − L1| (folded), and B is an intersection of the circle
+    of that radius about O with the circle of radius L3 about C; of the two intersections the
+    one on the mechanism's branch is kept. These are also the dead centres of the linkage when
+    the rocker drives. The time ratio is K = (π + θ)/(π − θ), θ the crank angle between the two
+    positions less π.
+    """
+    if grashof_class(*mechanism.lengths).name != "crank-rocker":
+        raise AssemblyError("limit positions of the rocker are defined here for a crank-rocker (shortest link "
+                            f"the crank, s + l < p + q); this linkage is a {grashof_class(*mechanism.lengths).name}")
+    l1, l2, l3, d = mechanism.lengths
+    c = mechanism.pivot
+    found = []
+    for reach, sign in ((l2 + l1, 1.0), (l2 - l1, -1.0)):
+        # intersections of |B| = reach and |B − C| = L3, in closed form (as in the hinge block)
+        foot = (d**2 + reach**2 - l3**2) / (2.0 * d)
+        height = math.sqrt(max(reach**2 - foot**2, 0.0))
+        best = None
+        for side in (1.0, -1.0):
+            b = (foot + 1j * side * height) * c / d
+            phi = math.atan2(sign * b.imag, sign * b.real) % (2.0 * math.pi)
+            solved = mechanism.solve(np.array([phi]), order=0).point("B").value[0]
+            error = abs(solved - b)
+            if best is None or error < best[0]:
+                best = (error, phi, math.atan2((b - c).imag, (b - c).real))
+        found.append(best[1:])
+    phi = np.array([f[0] for f in found])
+    xi = np.array([f[1] for f in found])
+    forward = (phi[1] - phi[0]) % (2.0 * math.pi)
+    backward = 2.0 * math.pi - forward
+    swing = abs(math.remainder(xi[0] - xi[1], 2.0 * math.pi))
+    return LimitPositions(phi, xi, swing, forward, backward, max(forward, backward) / min(forward, backward))
+
+
+def transmission_angle(solution: Solution) -> np.ndarray:
+    """Transmission angle μ (rad) at B between the coupler and the rocker, in [0, π].
+
+    ``μ = |wrap(ψ − ξ)|``: the angle between the vectors B → A and B → C. A linkage runs well
+    while μ stays away from 0 and π; 40°–140° is a common rule.
+    """
+    difference = solution.angle("coupler").value - solution.angle("rocker").value
+    return np.abs(np.angle(np.exp(1j * difference)))
+
+
+def transmission_extremes(mechanism: FourBar) -> tuple[float, float]:
+    """Smallest and largest transmission angle μ (rad) over the crank's range, analytically.
+
+    Notes
+    -----
+    By the cosine law in triangle ABC, ``|AC|² = L2² + L3² − 2 L2 L3 cos μ``: μ grows with |AC|,
+    which is extreme at φ = θ0 (|AC| = |d − L1|) and φ = θ0 + π (|AC| = d + L1), or at the limits
+    of the crank range of a non-rotating crank (μ = 0 or π). Half-angle form:
+    ``tan²(μ/2) = (|AC|² − (L2 − L3)²)/((L2 + L3)² − |AC|²)``.
+    """
+    l1, l2, l3, d = mechanism.lengths
+
+    def mu(reach):
+        inner, outer = abs(l2 - l3), l2 + l3
+        reach = min(max(reach, inner), outer)   # outside the range the crank cannot go: μ = 0 or π
+        return 2.0 * math.atan2(math.sqrt((reach - inner) * (reach + inner)),
+                                math.sqrt((outer - reach) * (outer + reach)))
+
+    return mu(abs(d - l1)), mu(d + l1)
+
+
+def coupler_curve(mechanism: FourBar, along: float, left: float = 0.0, positions: int = 361) -> PointMotion:
+    """Positions of a point of the coupler over the crank's range (the coupler curve).
+
+    Parameters
+    ----------
+    along, left : float
+        The point's coordinates on the coupler: u (m) along A → B, v (m) to its left.
+    positions : int
+        Number of crank positions over the range (a full turn, or each assembly interval).
+
+    Returns
+    -------
+    PointMotion
+        Positions only (order 0), in the order of the motion: over a full turn for a rotating
+        crank; for a rocking crank from one limit of its interval to the other on the
+        mechanism's branch and back on the other branch, so that the curve closes (at a limit
+        of assembly the motion passes from one branch to the other). A crank with two
+        separate intervals gives two closed curves, one after the other.
+    """
+    intervals = crank_range(mechanism)
+    if not intervals:
+        raise AssemblyError("the four-bar assembles at no crank angle")
+    pieces = []
+    for lo, hi in intervals:
+        phi = np.linspace(lo, hi, positions)
+        if hi - lo < 2.0 * math.pi - 1e-12:
+            # a rocking crank: go to the limit and come back on the other branch (the motion
+            # passes the limit with the rocker and coupler in line)
+            shrink = 1e-12 * (hi - lo)
+            phi = np.linspace(lo + shrink, hi - shrink, positions)
+            forward = mechanism.solve(phi, order=0).point_on("coupler", along, left).value
+            mirror = FourBar(mechanism.crank, mechanism.coupler, mechanism.rocker, mechanism.frame,
+                             -mechanism.branch)
+            back = mirror.solve(phi[::-1], order=0).point_on("coupler", along, left).value
+            pieces.append(np.concatenate([forward, back, forward[:1]]))
+        else:
+            pieces.append(mechanism.solve(phi, order=0).point_on("coupler", along, left).value)
+    return PointMotion(np.concatenate(pieces))
+
+
+@dataclass(frozen=True)
+class StraightPart:
+    """A nearly straight part of a point's path.
+
+    Attributes
+    ----------
+    phi : (float, float)
+        Crank angles (rad) at its ends.
+    length : float
+        Its length along the best line (m): the extent of the points' projections.
+    deviation : float
+        The largest distance of a point of the part from the best line (m).
+    point, direction : complex
+        The best line: through ``point`` along the unit vector ``direction``.
+    """
+
+    phi: tuple[float, float]
+    length: float
+    deviation: float
+    point: complex
+    direction: complex
+
+
+def best_line(points: np.ndarray) -> tuple[complex, complex, float, float]:
+    """The total-least-squares line of points ``x + iy``: (point, direction, length, deviation).
+
+    The line passes through the centroid along the principal direction of the points (the
+    singular vector of their centred coordinates); ``length`` is the extent of the projections
+    on it and ``deviation`` the largest distance from it (m).
+    """
+    points = np.asarray(points, dtype=complex)
+    centre = points.mean()
+    arms = points - centre
+    _, _, vt = np.linalg.svd(np.column_stack([arms.real, arms.imag]), full_matrices=False)
+    direction = complex(vt[0, 0], vt[0, 1])
+    along = (np.conj(direction) * arms).real
+    across = (np.conj(direction) * arms).imag
+    return complex(centre), direction, float(np.ptp(along)), float(np.max(np.abs(across)))
+
+
+def straight_part(phi: np.ndarray, points: np.ndarray, centre: int, tolerance: float) -> StraightPart:
+    """The longest stretch of a path, symmetric in index about ``centre``, within ``tolerance`` of a line.
+
+    Parameters
+    ----------
+    phi : ndarray
+        Crank angles (rad) of the samples, in order along the path.
+    points : ndarray of complex
+        The path ``x + iy`` (m) at those angles.
+    centre : int
+        Index of the sample at the middle of the straight part (e.g. on an axis of symmetry).
+    tolerance : float
+        Largest distance (m) from the best line allowed.
+
+    Notes
+    -----
+    The window grows one sample on each side at a time while the best line's deviation stays
+    within the tolerance (chapter 4, Chebyshev's lambda mechanism).
+    """
+    points = np.asarray(points, dtype=complex)
+    best = None
+    for half in range(1, min(centre, points.size - 1 - centre) + 1):
+        window = points[centre - half:centre + half + 1]
+        line = best_line(window)
+        if line[3] > tolerance:
+            break
+        best = (half, line)
+    if best is None:
+        raise ValueError(f"no straight part within {tolerance:g} m around sample {centre}")
+    half, (point, direction, length, deviation) = best
+    return StraightPart((float(phi[centre - half]), float(phi[centre + half])), length, deviation, point, direction)

@@ -1,0 +1,137 @@
+"""Analysis of slotted-lever mechanisms (chapter 5): swing, limit positions, time ratio, shaper stroke.
+
+For an oscillating lever (pivot C at distance d from the crank centre O, crank radius r < d) the
+lever is at an extreme position when it is tangent to the crank circle, OA ⊥ CA. Then
+
+    sin β = r / d
+
+where β is half the lever's swing, and the crank angles between the two extremes are π − 2β
+(the quick stroke, on the side of the pivot) and π + 2β (the slow stroke). The time ratio (the
+coefficient of the change of the mean speed) of a crank turning at constant speed is
+
+    K = (π + 2β) / (π − 2β).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.errors import InvalidParameterError
+from ..core.validate import require_length
+from ..linkages.slotted import Shaper, SlottedLever
+
+__all__ = ["half_swing", "time_ratio", "LimitPositions", "limit_positions", "ShaperStroke", "shaper_stroke"]
+
+
+def half_swing(crank: float, pivot_distance: float) -> float:
+    """Half the swing β of an oscillating slotted lever (rad): ``sin β = r/d``.
+
+    Parameters
+    ----------
+    crank : float
+        Crank radius r (m).
+    pivot_distance : float
+        Distance d = |OC| from the crank centre to the lever's pivot (m), greater than r.
+
+    Notes
+    -----
+    ``β = atan2(r, √((d − r)(d + r)))`` (accurate also when r is close to d).
+    """
+    r = require_length("crank", crank)
+    d = require_length("pivot_distance", pivot_distance)
+    if d <= r:
+        raise InvalidParameterError("pivot_distance", pivot_distance, f"greater than the crank r = {r:g} m for an "
+                                    "oscillating lever (otherwise the lever rotates and has no swing)")
+    return math.atan2(r, math.sqrt((d - r) * (d + r)))
+
+
+def time_ratio(crank: float, pivot_distance: float) -> float:
+    """Time ratio K of an oscillating slotted lever: ``K = (π + 2β)/(π − 2β)``, ``sin β = r/d``."""
+    beta = half_swing(crank, pivot_distance)
+    return (math.pi + 2.0 * beta) / (math.pi - 2.0 * beta)
+
+
+@dataclass(frozen=True)
+class LimitPositions:
+    """The two extreme positions of an oscillating slotted lever.
+
+    Attributes
+    ----------
+    crank_angles : tuple of float
+        The crank angles φ (rad) of the two extremes, in [0, 2π); the crank turns from the first
+        to the second through the slow stroke (π + 2β) when it turns counter-clockwise.
+    lever_angles : tuple of float
+        The lever angles ξ (rad) at the two extremes.
+    half_swing : float
+        β (rad).
+    time_ratio : float
+        K.
+    """
+
+    crank_angles: tuple[float, float]
+    lever_angles: tuple[float, float]
+    half_swing: float
+    time_ratio: float
+
+
+def limit_positions(mechanism: SlottedLever | Shaper) -> LimitPositions:
+    """The extreme positions of an oscillating slotted lever (also of a shaper's lever).
+
+    Notes
+    -----
+    With γ the direction of the pivot C seen from O, the lever is tangent to the crank circle
+    at ``φ = γ ± (π/2 − β)``, and the lever angle there is ``ξ = arg(A − C)``. Counter-clockwise,
+    the crank goes from ``γ + π/2 − β`` to ``γ − π/2 + β + 2π`` through ``π + 2β`` (slow) and back
+    through ``π − 2β`` (quick).
+    """
+    pivot = complex(*mechanism.pivot)
+    r, d = mechanism.crank, abs(pivot)
+    beta = half_swing(r, d)
+    gamma = math.atan2(pivot.imag, pivot.real)
+    first = (gamma + 0.5 * math.pi - beta) % (2.0 * math.pi)
+    second = (gamma - 0.5 * math.pi + beta) % (2.0 * math.pi)
+    lever = tuple(float(np.angle(r * np.exp(1j * phi) - pivot)) for phi in (first, second))
+    return LimitPositions((first, second), lever, beta, time_ratio(r, d))
+
+
+@dataclass(frozen=True)
+class ShaperStroke:
+    """The ram's extreme positions and stroke.
+
+    Attributes
+    ----------
+    positions : tuple of float
+        The ram's abscissa x_D (m) at the lever's two extremes (same order as
+        :class:`LimitPositions`).
+    stroke : float
+        |x_D1 − x_D2| (m).
+    time_ratio : float
+        K, the lever's (the ram is at rest exactly when the lever is).
+    """
+
+    positions: tuple[float, float]
+    stroke: float
+    time_ratio: float
+
+
+def shaper_stroke(shaper: Shaper) -> ShaperStroke:
+    """The ram's stroke of a shaper from the lever's extreme positions, in closed form.
+
+    Notes
+    -----
+    At an extreme lever angle ξ the lever's end is ``B = C + L₃ exp(iξ)``; the ram is where the rod
+    of length L₄ from B meets the line y = h: ``x_D = x_B + b·√((L₄ − (y_B − h))(L₄ + (y_B − h)))``.
+    The ram's velocity ``v_D`` vanishes only where B's velocity is perpendicular to the rod, that is where
+    ξ_t = 0 (or the rod is along the lever, which the assembly excludes), so these are its extremes.
+    """
+    limits = limit_positions(shaper)
+    c = complex(*shaper.pivot)
+    xs = []
+    for xi in limits.lever_angles:
+        b = c + shaper.lever * complex(math.cos(xi), math.sin(xi))
+        dy = b.imag - shaper.ram_height
+        xs.append(b.real + shaper.branch * math.sqrt((shaper.rod - dy) * (shaper.rod + dy)))
+    return ShaperStroke((xs[0], xs[1]), abs(xs[0] - xs[1]), limits.time_ratio)

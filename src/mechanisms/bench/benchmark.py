@@ -1,0 +1,696 @@
+"""Layer 6: the benchmark — time per position against error, side by side, in one process.
+
+``python -m mechanisms bench`` runs every method the book compares (chapter 8) on the same
+mechanisms and crank angles and reports, for each, the time per position (best of R runs) and
+the largest error against a high-accuracy reference:
+
+* ``closed form`` — :meth:`~mechanisms.base.Mechanism.solve` at ``order`` 0, 1 and 2;
+* ``newton`` — the generic solver (:func:`~mechanisms.verify.solve_constraints`), all positions
+  at once, started from the closed-form solution 1° earlier in the crank angle (as a
+  continuation over a 1° grid would start it), at several tolerances;
+* ``central difference`` — velocities (order 1) and accelerations (order 2) from positions of
+  the closed form by :func:`~mechanisms.verify.central_difference`, at several steps h;
+* ``memory floor`` — copying as many bytes as the closed form returns at that order, into
+  newly allocated memory, in the same run: no method that returns its results can beat it;
+* peers, when installed (``pip install mechanisms[bench]``): pylinkage's ``step()`` and its
+  numba-compiled ``step_fast()`` on the four-bar.
+
+The reference is the solution of the mechanism's own constraint equations by Newton's method in
+extended precision (``numpy.longdouble``, 64-bit mantissa on x86-64), polished from the closed
+form and differentiated exactly with :class:`~mechanisms.jet.Jet`: its error is about 1e-19,
+a thousand times below the double-precision errors it measures, and it shares no formula with
+the closed forms.
+"""
+
+from __future__ import annotations
+
+import datetime
+import json
+import math
+import os
+import platform
+import time
+import warnings
+from typing import Callable, Iterable, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..linkages.base import Mechanism, Solution
+from ..linkages.crank_slider import CrankSlider
+from ..core.errors import DeadCentreWarning
+from ..linkages.four_bar import FourBar
+from ..verify.jet import Jet
+from ..linkages.slotted import SlottedLever
+from ..verify import central_difference, solve_constraints
+
+__all__ = [
+    "benchmark_mechanisms",
+    "reference",
+    "coordinate_errors",
+    "jacobian_condition",
+    "output_bytes",
+    "best_time",
+    "run",
+    "format_text",
+    "format_json",
+    "pylinkage_available",
+    "DEFAULT_SIZES",
+    "NEWTON_TOLERANCES",
+    "DIFFERENCE_STEPS",
+    "RESULT_KEYS",
+]
+
+DEFAULT_SIZES = (1000, 100_000, 1_000_000)
+NEWTON_TOLERANCES = (1e-2, 1e-4, 1e-8, 1e-14)
+DIFFERENCE_STEPS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
+RESULT_KEYS = ("mechanism", "method", "order", "parameter", "n", "seconds", "ns_per_position", "max_error")
+REFERENCE_SAMPLE = 100_000
+"""The errors are measured on at most this many positions, evenly spread over those computed."""
+LOOP_LIMIT = 100_000
+"""pylinkage's Python loop ``step()`` is timed on at most this many positions (it takes ~10 µs each)."""
+OMEGA = 1.0
+"""Crank speed φ_t (rad/s) of every run: velocities in rad/s are then derivatives in φ."""
+
+
+def benchmark_mechanisms() -> dict[str, Mechanism]:
+    """The three mechanisms of the benchmark, by their command-line names.
+
+    The four-bar is the peers' one: frame |OC| = 4, crank 1, coupler 3.5, rocker 3 (a
+    crank-rocker). The crank-slider has crank 1, rod 3.5 and offset 0.5; the slotted lever
+    crank 1 and the lever's pivot at (0, 2) (oscillating).
+    """
+    return {"crank-slider": CrankSlider(crank=1.0, rod=3.5, offset=0.5),
+            "four-bar": FourBar(crank=1.0, coupler=3.5, rocker=3.0, frame=(4.0, 0.0), branch=1),
+            "slotted-lever": SlottedLever(crank=1.0, pivot=(0.0, 2.0))}
+
+
+# --- the reference ------------------------------------------------------------------------------
+
+def _parts(values: Sequence, shape) -> tuple[np.ndarray, ...]:
+    return tuple(np.broadcast_to(v.f if isinstance(v, Jet) else v, shape) for v in values)
+
+
+def _derivative(values: Sequence, shape, which: str) -> tuple[np.ndarray, ...]:
+    return tuple(np.broadcast_to(getattr(v, which) if isinstance(v, Jet) else 0.0, shape) for v in values)
+
+
+def _solve_two(jac: list[list[np.ndarray]], rhs: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Solve the 2×2 systems ``jac · x = rhs`` at every position by Cramer's rule (any float type)."""
+    (a, b), (c, d) = jac
+    det = a * d - b * c
+    return (rhs[0] * d - b * rhs[1]) / det, (a * rhs[1] - c * rhs[0]) / det
+
+
+def _jacobian(constraints: Callable, q: Sequence[np.ndarray], phi: np.ndarray):
+    columns = []
+    for j in range(2):
+        seeded = [Jet(q[i], np.ones_like(q[i]) if i == j else np.zeros_like(q[i])) for i in range(2)]
+        columns.append(_derivative(constraints(seeded, phi), phi.shape, "d1"))
+    residual = _parts(constraints(list(q), phi), phi.shape)
+    return [[columns[0][0], columns[1][0]], [columns[0][1], columns[1][1]]], residual
+
+
+def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha: float = 0.0,
+              iterations: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The coordinates q with q_t and q_tt in extended precision, from the constraint equations.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with two unknown coordinates (``mechanism.coordinates``).
+    phi : array_like
+        Crank angles φ (rad), taken as exact (double or extended precision).
+    omega, alpha : float
+        Crank speed φ_t (rad/s) and acceleration φ_tt (rad/s²).
+    iterations : int
+        Newton iterations in ``numpy.longdouble`` from the double-precision closed form.
+
+    Returns
+    -------
+    (q, q_t, q_tt) : tuple of ndarray, shape (2, n), dtype longdouble
+
+    Notes
+    -----
+    Newton's method converges quadratically: from the closed form's 1e-15 two steps reach the
+    extended precision's round-off (about 1e-19 relative); the third is a margin. The closed
+    form only selects the branch: the result is the root of Φ(q, φ) = 0 next to it. Velocities
+    and accelerations come from ``Φ_q q_t = −Φ_φ φ_t`` and the twice-differentiated constraints
+    (chapter 2), with exact derivatives (:class:`~mechanisms.jet.Jet`) in extended precision.
+    """
+    phi_ld = np.atleast_1d(np.asarray(phi)).astype(np.longdouble)
+    phi = phi_ld.astype(float)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeadCentreWarning)
+        start = mechanism.solve(phi, omega, alpha, order=0)
+    q = [np.asarray(c.value, dtype=np.longdouble) for c in mechanism.coordinates(start)]
+    for _ in range(iterations):
+        jac, residual = _jacobian(mechanism.constraints, q, phi_ld)
+        step = _solve_two(jac, residual)
+        q = [q[0] - step[0], q[1] - step[1]]
+    jac, _ = _jacobian(mechanism.constraints, q, phi_ld)
+    w = np.full(phi.shape, omega, dtype=np.longdouble)
+    e = np.full(phi.shape, alpha, dtype=np.longdouble)
+    rates = _derivative(mechanism.constraints([Jet(v) for v in q], Jet(phi_ld, w)), phi.shape, "d1")
+    q_t = _solve_two(jac, [-r for r in rates])
+    path = mechanism.constraints([Jet(v, vt) for v, vt in zip(q, q_t)], Jet(phi_ld, w, e))
+    q_tt = _solve_two(jac, [-r for r in _derivative(path, phi.shape, "d2")])
+    return np.array(q), np.array(q_t), np.array(q_tt)
+
+
+def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
+    """The condition number of the constraint Jacobian Φ_q at the closed-form positions.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with two unknown coordinates.
+    phi : array_like
+        Crank angles φ (rad).
+
+    Returns
+    -------
+    ndarray
+        ``cond₂(Φ_q) = σ_max/σ_min`` at each position: how much a relative error of the
+        constraint residual can grow in the coordinates; ``inf`` where Φ_q is singular (dead
+        centres, change points). It depends on the units of the coordinates when they mix angles
+        and lengths (chapter 8).
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeadCentreWarning)
+        solution = mechanism.solve(phi, order=0)
+    q = [np.asarray(c.value, dtype=float) for c in mechanism.coordinates(solution)]
+    jac, _ = _jacobian(mechanism.constraints, q, phi)
+    matrix = np.stack([np.stack(jac[0], axis=-1), np.stack(jac[1], axis=-1)], axis=-2)
+    singular_values = np.linalg.svd(matrix, compute_uv=False)
+    with np.errstate(divide="ignore"):
+        return singular_values[..., 0] / singular_values[..., -1]
+
+
+def _wrapped(difference: np.ndarray, angle: bool) -> np.ndarray:
+    if not angle:
+        return difference
+    return (difference + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarray | None, q_tt: np.ndarray | None,
+                      ref: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[float, float, float]:
+    """Largest errors of coordinates, velocities and accelerations against :func:`reference`.
+
+    ``q``, ``q_t``, ``q_tt`` are arrays of shape (2, n) (or ``None`` if not computed); angles
+    are compared modulo 2π. Returns ``(position, velocity, acceleration)`` errors (rad or m,
+    per second, per second squared), ``nan`` for what was not computed.
+    """
+    angles = _angle_rows(mechanism)
+    out = []
+    for mine, theirs, wrap in ((q, ref[0], True), (q_t, ref[1], False), (q_tt, ref[2], False)):
+        if mine is None:
+            out.append(math.nan)
+            continue
+        worst = 0.0
+        for row in range(2):
+            diff = np.asarray(mine[row], dtype=np.longdouble) - theirs[row]
+            diff = _wrapped(diff, wrap and angles[row])
+            worst = max(worst, float(np.max(np.abs(diff))))
+        out.append(worst)
+    return tuple(out)
+
+
+def _angle_rows(mechanism: Mechanism) -> tuple[bool, bool]:
+    """Which of the two coordinates are angles (the others are lengths)."""
+    if isinstance(mechanism, FourBar):
+        return True, True
+    return True, False   # crank-slider (ψ, s), slotted lever (ξ, L)
+
+
+def _coordinates(mechanism: Mechanism, solution: Solution, order: int):
+    coords = mechanism.coordinates(solution)
+    parts = [np.array([c.value for c in coords])]
+    for k in (1, 2):
+        parts.append(np.array([c.derivatives()[k] for c in coords]) if order >= k else None)
+    return parts
+
+
+# --- timing ---------------------------------------------------------------------------------------
+
+def best_time(task: Callable[[], object], repeat: int) -> float:
+    """The shortest of ``repeat`` wall-clock times of ``task()`` (s); runs over 2 s are not repeated."""
+    best = math.inf
+    for _ in range(max(1, repeat)):
+        start = time.perf_counter()
+        task()
+        elapsed = time.perf_counter() - start
+        best = min(best, elapsed)
+        if elapsed > 2.0:
+            break
+    return best
+
+
+def output_bytes(solution: Solution) -> int:
+    """Bytes of the arrays a solution holds (angles, points, sliders), each array counted once.
+
+    Not counted, because they cost no memory traffic: the crank angles passed in, and views of one
+    number (a zero stride: a fixed pivot, its zero velocity and acceleration, a constant crank
+    speed), which take no memory.
+    """
+    seen, total = set(), 0
+    skip = {np.asarray(solution.phi).__array_interface__["data"][0]}
+    groups = [solution.angle(n) for n in solution.angle_names] + [solution.point(n) for n in solution.point_names]
+    groups += [solution.slider(n) for n in solution.slider_names]
+    for motion in groups:
+        for array in motion.derivatives():
+            if array is None:
+                continue
+            array = np.asarray(array)
+            address = array.__array_interface__["data"][0]
+            if address in seen or address in skip or 0 in array.strides:
+                continue
+            seen.add(address)
+            total += array.nbytes
+    return total
+
+
+def _result(mechanism: str, method: str, order: int, parameter, n: int, seconds: float, error: float) -> dict:
+    return {"mechanism": mechanism, "method": method, "order": order, "parameter": parameter, "n": int(n),
+            "seconds": seconds, "ns_per_position": seconds / n * 1e9,
+            "max_error": None if error is None or not math.isfinite(error) else error}
+
+
+def _sample(n: int) -> np.ndarray:
+    return np.unique(np.linspace(0, n - 1, min(n, REFERENCE_SAMPLE)).astype(int))
+
+
+def _bench_mechanism(name: str, mechanism: Mechanism, n: int, repeat: int) -> list[dict]:
+    phi = np.arange(n) * (2.0 * math.pi / n)
+    sample = _sample(n)
+    ref = reference(mechanism, phi[sample])
+    results = []
+    # the closed form, and the memory floor of each order
+    for order in (0, 1, 2):
+        seconds = best_time(lambda: mechanism.solve(phi, OMEGA, order=order), repeat)
+        solution = mechanism.solve(phi, OMEGA, order=order)
+        q = _coordinates(mechanism, solution, order)
+        errors = coordinate_errors(mechanism, *(None if a is None else a[:, sample] for a in q), ref)
+        results.append(_result(name, "closed form", order, None, n, seconds, max(errors[:order + 1])))
+        buffer = np.ones(output_bytes(solution), dtype=np.uint8)
+        seconds = best_time(buffer.copy, repeat)
+        results.append(_result(name, "memory floor", order, buffer.nbytes, n, seconds, None))
+        del solution, buffer
+    # Newton's method on the constraint equations, from the solution 1° earlier
+    guess = np.array([c.value for c in mechanism.coordinates(mechanism.solve(phi - math.radians(1.0), order=0))])
+    for tol in NEWTON_TOLERANCES:
+        def newton():
+            return solve_constraints(mechanism.constraints, guess, phi, OMEGA, 0.0, order=2, tol=tol)
+        seconds = best_time(newton, repeat)
+        g = newton()
+        errors = coordinate_errors(mechanism, g.q[:, sample], g.q_t[:, sample], g.q_tt[:, sample], ref)
+        results.append(_result(name, "newton", 2, tol, n, seconds, max(errors)))
+    # numerical differentiation of the closed-form positions
+    for order in (1, 2):
+        for h in DIFFERENCE_STEPS:
+            def difference():
+                return np.array([central_difference(lambda a, k=k: _position_row(mechanism, a, k), phi, OMEGA, h,
+                                                    order, angle=k == 0 or _angle_rows(mechanism)[k])
+                                 for k in range(2)])
+            seconds = best_time(difference, repeat)
+            values = difference()[:, sample]
+            error = max(float(np.max(np.abs(values[row] - ref[order][row]))) for row in range(2))
+            results.append(_result(name, "central difference", order, h, n, seconds, error))
+    return results
+
+
+def _position_row(mechanism: Mechanism, phi: np.ndarray, row: int) -> np.ndarray:
+    """One coordinate of the closed form at order 0 (a fresh solve: what a finite difference pays)."""
+    coords = mechanism.coordinates(mechanism.solve(phi, OMEGA, order=0))
+    return coords[row].value
+
+
+# --- peers ------------------------------------------------------------------------------------------
+
+def pylinkage_available() -> bool:
+    """True if pylinkage (and numba, for ``step_fast``) can be imported."""
+    try:
+        import numba  # noqa: F401
+        import pylinkage  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _pylinkage_four_bar(n: int):
+    """pylinkage's four-bar with the benchmark's lengths; the crank turns 2π/n per step."""
+    from pylinkage.actuators import Crank
+    from pylinkage.components import Ground
+    from pylinkage.dyads import RRRDyad
+    from pylinkage.simulation import Linkage
+
+    origin, pivot = Ground(0.0, 0.0, name="O"), Ground(4.0, 0.0, name="C")
+    crank = Crank(anchor=origin, radius=1.0, angular_velocity=2.0 * math.pi / n, name="A")
+    joint = RRRDyad(crank.output, pivot, distance1=3.5, distance2=3.0, name="B")
+    return Linkage([origin, pivot, crank, joint], name="four-bar")
+
+
+def _peer_error(mechanism: FourBar, points: np.ndarray, n: int) -> float:
+    """Largest distance of pylinkage's joints A and B (rows 2 and 3) from the reference (m).
+
+    After k + 1 steps of 2π/n its crank angle is (k + 1)·(2π/n): the reference is evaluated at
+    that angle, in extended precision.
+    """
+    sample = _sample(points.shape[0])
+    phi = (sample + 1).astype(np.longdouble) * np.longdouble(2.0 * math.pi / n)
+    psi = reference(mechanism, phi)[0][0]
+    ax, ay = mechanism.crank * np.cos(phi), mechanism.crank * np.sin(phi)
+    bx, by = ax + mechanism.coupler * np.cos(psi), ay + mechanism.coupler * np.sin(psi)
+    errors = (np.hypot(points[sample, 2, 0] - ax, points[sample, 2, 1] - ay),
+              np.hypot(points[sample, 3, 0] - bx, points[sample, 3, 1] - by))
+    return float(max(np.max(e) for e in errors))
+
+
+def _bench_peers(mechanism: FourBar, n: int, repeat: int) -> list[dict]:
+    results = []
+    linkage = _pylinkage_four_bar(n)
+    start = [c.position for c in linkage.components]
+    linkage.step_fast(iterations=2)             # compile (or load numba's cache) before timing
+
+    def fast():
+        linkage.set_coords(start)
+        return linkage.step_fast(iterations=n)
+
+    seconds = best_time(fast, repeat)
+    results.append(_result("four-bar", "pylinkage step_fast", 0, None, n, seconds, _peer_error(mechanism, fast(), n)))
+    m = min(n, LOOP_LIMIT)
+    loop = _pylinkage_four_bar(n)
+    loop_start = [c.position for c in loop.components]
+
+    def slow():
+        loop.set_coords(loop_start)
+        return np.array([[p if p[0] is not None else (math.nan, math.nan) for p in row]
+                         for row in loop.step(iterations=m)], dtype=float)
+
+    seconds = best_time(slow, repeat)
+    results.append(_result("four-bar", "pylinkage step", 0, None, m, seconds, _peer_error(mechanism, slow(), n)))
+    return results
+
+
+# --- the whole run ------------------------------------------------------------------------------------
+
+def machine_description() -> str:
+    """The machine and software of a run, in one line."""
+    try:
+        cpus = len(os.sched_getaffinity(0))
+    except AttributeError:
+        cpus = os.cpu_count()
+    return (f"{platform.machine()} {platform.processor() or ''} {cpus} CPU(s), {platform.system()}, "
+            f"Python {platform.python_version()}, numpy {np.__version__}").replace("  ", " ")
+
+
+def run(sizes: Iterable[int] = DEFAULT_SIZES, repeat: int = 3, mechanisms: Iterable[str] | None = None,
+        peers: bool = True) -> dict:
+    """Run the benchmark.
+
+    Parameters
+    ----------
+    sizes : iterable of int
+        Numbers of crank positions n.
+    repeat : int
+        Each time is the best of this many runs (R).
+    mechanisms : iterable of str, optional
+        Names from :func:`benchmark_mechanisms` (default: all three).
+    peers : bool
+        Also time pylinkage, if it is installed.
+
+    Returns
+    -------
+    dict
+        ``{"results": [...], "date", "machine", "reference", "notes"}``; each result has the keys
+        of :data:`RESULT_KEYS` (``parameter``: Newton's tolerance, the difference step h in rad, or
+        the floor's bytes; ``max_error``: rad, m and their time derivatives at ω = 1 rad/s, or
+        ``None`` for the floor).
+    """
+    table = benchmark_mechanisms()
+    names = list(table) if mechanisms is None else list(mechanisms)
+    results, notes = [], []
+    peers = peers and pylinkage_available()
+    if not peers:
+        notes.append("pylinkage not timed: not installed (pip install 'mechanisms[bench]') or not asked for")
+    for n in sizes:
+        for name in names:
+            results += _bench_mechanism(name, table[name], int(n), repeat)
+        if peers and "four-bar" in names:
+            results += _bench_peers(table["four-bar"], int(n), repeat)
+    extended = np.finfo(np.longdouble).eps
+    if extended >= np.finfo(float).eps:
+        notes.append("numpy.longdouble is double precision on this machine: errors below ~1e-15 are not resolved")
+    return {"results": results,
+            "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+            "machine": machine_description(),
+            "reference": f"Newton's method in numpy.longdouble (eps = {float(extended):.1e}) on at most "
+                         f"{REFERENCE_SAMPLE} positions per run",
+            "notes": notes}
+
+
+def _cell(value, fmt: str) -> str:
+    return "—" if value is None else format(value, fmt)
+
+
+def format_text(report: dict) -> str:
+    """The benchmark as a plain-text table, one block per size and mechanism."""
+    lines = [f"mechanisms bench — {report['date']} — {report['machine']}",
+             f"reference: {report['reference']}; time: best of R runs"]
+    lines += [f"note: {note}" for note in report["notes"]]
+    header = f"{'method':<22}{'order':>6}{'parameter':>12}{'n':>10}{'ns/position':>14}{'max error':>12}"
+    current = None
+    for r in report["results"]:
+        key = (r["n"] if r["method"] != "pylinkage step" else current[0], r["mechanism"])
+        if key != current:
+            current = key
+            lines += ["", f"{r['mechanism']}, n = {r['n']}", header]
+        parameter = r["parameter"]
+        parameter = "—" if parameter is None else (f"{parameter:.0e}" if isinstance(parameter, float)
+                                                    else f"{parameter} B")
+        lines.append(f"{r['method']:<22}{r['order']:>6}{parameter:>12}{r['n']:>10}"
+                     f"{_cell(r['ns_per_position'], '.1f'):>14}{_cell(r['max_error'], '.1e'):>12}")
+    return "\n".join(lines)
+
+
+def format_json(report: dict) -> str:
+    """The benchmark as JSON (the documented ``results`` and the run's date, machine and notes)."""
+    return json.dumps(report, indent=1)
+
+
+# --- studies for chapter 8 (small sizes, quick) ------------------------------------------------------
+
+QUANTITIES = ("positions", "velocities", "accelerations")
+
+
+def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
+                   tolerances: Sequence[float] = NEWTON_TOLERANCES,
+                   steps: Sequence[float] = (1e-1, 1e-3, 1e-5, 1e-7)) -> list[dict]:
+    """Cost and error of every method for each quantity: the data of a work-precision diagram.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with two unknown coordinates.
+    n : int
+        Crank positions, evenly over a turn.
+    repeat : int
+        Best of this many runs.
+    tolerances, steps : sequence of float
+        Newton's tolerances; the steps h (rad) of the central differences.
+
+    Returns
+    -------
+    list of dict
+        ``{"method", "parameter", "quantity", "ns_per_position", "error"}``. Each method is timed
+        at the order its quantity needs (positions: order 0 …); a central difference is charged the
+        closed-form positions it differentiates.
+    """
+    phi = np.arange(n) * (2.0 * math.pi / n)
+    ref = reference(mechanism, phi)
+    rows = []
+
+    def add(method, parameter, k, seconds, error):
+        rows.append({"method": method, "parameter": parameter, "quantity": QUANTITIES[k],
+                     "ns_per_position": seconds / n * 1e9, "error": error})
+
+    for k in range(3):
+        seconds = best_time(lambda: mechanism.solve(phi, OMEGA, order=k), repeat)
+        errors = coordinate_errors(mechanism, *_coordinates(mechanism, mechanism.solve(phi, OMEGA, order=k), k), ref)
+        add("closed form", None, k, seconds, errors[k])
+    guess = np.array([c.value for c in mechanism.coordinates(mechanism.solve(phi - math.radians(1.0), order=0))])
+    for tol in tolerances:
+        for k in range(3):
+            def newton():
+                return solve_constraints(mechanism.constraints, guess, phi, OMEGA, 0.0, order=k, tol=tol)
+            seconds = best_time(newton, repeat)
+            g = newton()
+            add("newton", tol, k, seconds, coordinate_errors(mechanism, g.q, g.q_t, g.q_tt, ref)[k])
+    angles = _angle_rows(mechanism)
+    for k in (1, 2):
+        for h in steps:
+            def difference():
+                return [central_difference(lambda a, r=r: _position_row(mechanism, a, r), phi, OMEGA, h, k,
+                                           angle=angles[r]) for r in range(2)]
+            seconds = best_time(difference, repeat)
+            values = difference()
+            add("central difference", h, k, seconds,
+                max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(2)))
+    return rows
+
+
+def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> dict[str, np.ndarray]:
+    """Errors of central differences of the closed-form positions against the step h (rad).
+
+    Returns ``{"velocities": …, "accelerations": …}``, the largest error over ``n`` positions for each
+    step (rad/s, m/s … and per second squared, at ω = 1 rad/s).
+    """
+    phi = np.arange(n) * (2.0 * math.pi / n)
+    ref = reference(mechanism, phi)
+    angles = _angle_rows(mechanism)
+    out = {}
+    for k, name in ((1, "velocities"), (2, "accelerations")):
+        errors = []
+        for h in steps:
+            values = [central_difference(lambda a, r=r: _position_row(mechanism, a, r), phi, OMEGA, h, k,
+                                         angle=angles[r]) for r in range(2)]
+            errors.append(max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(2)))
+        out[name] = np.array(errors)
+    return out
+
+
+def cost_against_size(mechanism: Mechanism, sizes: Sequence[int], repeat: int = 3,
+                      loop_limit: int = 2000) -> dict[str, np.ndarray]:
+    """Time per position (ns) of the vectorized closed form (order 0 and 2) and of a loop per angle.
+
+    The loop calls ``solve`` once per crank angle, as a program written without arrays would;
+    it is timed only for sizes up to ``loop_limit`` (``nan`` above).
+    """
+    out = {"vectorized, order 0": [], "vectorized, order 2": [], "loop per angle, order 2": []}
+    for n in sizes:
+        phi = np.arange(n) * (2.0 * math.pi / n)
+        for order in (0, 2):
+            seconds = best_time(lambda: mechanism.solve(phi, OMEGA, order=order), repeat)
+            out[f"vectorized, order {order}"].append(seconds / n * 1e9)
+        if n <= loop_limit:
+            seconds = best_time(lambda: [mechanism.solve(phi[i:i + 1], OMEGA) for i in range(n)], repeat)
+            out["loop per angle, order 2"].append(seconds / n * 1e9)
+        else:
+            out["loop per angle, order 2"].append(math.nan)
+    return {key: np.array(value) for key, value in out.items()}
+
+
+# --- figures for chapter 8 -------------------------------------------------------------------------
+
+_METHOD_STYLE = {"closed form": ("o", "#1f77b4"), "newton": ("s", "#ff7f0e"),
+                 "central difference": ("^", "#2ca02c"), "memory floor": ("", "#7f7f7f"),
+                 "pylinkage step_fast": ("D", "#d62728"), "pylinkage step": ("v", "#9467bd")}
+
+
+def plot_work_precision(rows: list[dict], axes=None):
+    """Work-precision diagrams: error against time per position, one panel per quantity.
+
+    Newton's points are labelled with their tolerance, the central differences with their step.
+    Returns the axes.
+    """
+    import matplotlib.pyplot as plt
+
+    if axes is None:
+        _, axes = plt.subplots(1, 3, figsize=(11, 3.6), sharey=True)
+    for ax, quantity in zip(axes, QUANTITIES):
+        for method, (marker, colour) in _METHOD_STYLE.items():
+            chosen = [r for r in rows if r["method"] == method and r["quantity"] == quantity]
+            if not chosen:
+                continue
+            x = [r["ns_per_position"] for r in chosen]
+            y = [max(r["error"], 1e-17) for r in chosen]
+            ax.plot(x, y, marker=marker, color=colour, ls="-" if len(chosen) > 1 else "", label=method)
+            for (xi, yi), text in _labels(chosen, x, y):
+                ax.annotate(text, (xi, yi), xytext=(4, 2), textcoords="offset points", fontsize=7, color=colour)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.xaxis.set_minor_formatter(plt.NullFormatter())
+        ax.set_title(quantity)
+        ax.set_xlabel("time per position, ns")
+    axes[0].set_ylabel("largest error (rad, m; per s, per s²)")
+    figure = axes[0].figure
+    handles, names = axes[-1].get_legend_handles_labels()
+    figure.legend(handles, names, loc="lower center", ncol=len(names), fontsize=8, frameon=False)
+    figure.subplots_adjust(bottom=0.24)
+    return axes
+
+
+def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tuple[float, float], str]]:
+    """The parameters of a method's points as labels; points whose errors are within a factor of
+    three of each other (Newton's tolerances once at round-off) share one label, so none overlap."""
+    labels: list[tuple[tuple[float, float], str]] = []
+    for r, xi, yi in zip(chosen, x, y):
+        if r["parameter"] is None:
+            continue
+        text = f"{r['parameter']:.0e}"
+        if labels and 1 / 3 < yi / labels[-1][0][1] < 3:
+            labels[-1] = (labels[-1][0], f"{labels[-1][1]}, {text}")
+        else:
+            labels.append(((xi, yi), text))
+    return labels
+
+
+def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=None):
+    """The U-shaped error of central differences against the step h, with its two asymptotes.
+
+    Truncation: ``h²/6·|q'''|`` (velocities), ``h²/12·|q''''|`` (accelerations), fitted at the largest
+    step; round-off: ``ε/h`` and ``4ε/h²`` times the size of the coordinates (about 1 here).
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6, 4))
+    h = np.asarray(steps, dtype=float)
+    eps = np.finfo(float).eps
+    for (name, values), colour, power in zip(errors.items(), ("#1f77b4", "#d62728"), (1, 2)):
+        ax.loglog(h, values, "o-", color=colour, label=f"{name}: error")
+        truncation = values[0] * (h / h[0]) ** 2
+        roundoff = (1 if power == 1 else 4) * eps / h**power
+        ax.loglog(h, truncation, ":", color=colour, lw=1)
+        ax.loglog(h, roundoff, "--", color=colour, lw=1)
+    ax.plot([], [], "k:", lw=1, label="truncation ∝ h²")
+    ax.plot([], [], "k--", lw=1, label="round-off ∝ ε/h, ε/h²")
+    ax.set_ylim(1e-12, 1e1)
+    ax.set_xlabel("step h, rad")
+    ax.set_ylabel("largest error, 1/s or 1/s²")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_stored(report: dict, mechanism: str = "four-bar", ax=None):
+    """Time per position against the number of positions, from a stored benchmark run."""
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.5, 4))
+    series = {}
+    for r in report["results"]:
+        if r["mechanism"] != mechanism:
+            continue
+        if r["method"] in ("closed form", "memory floor"):
+            key = f"{r['method']}, order {r['order']}"
+        elif r["method"] == "newton" and r["parameter"] == min(NEWTON_TOLERANCES):
+            key = f"newton, tol {r['parameter']:.0e}"
+        elif r["method"].startswith("pylinkage"):
+            key = r["method"]
+        else:
+            continue
+        best = series.setdefault(key, {})
+        best[r["n"]] = min(best.get(r["n"], math.inf), r["ns_per_position"])
+    for key, by_size in series.items():
+        points = sorted(by_size.items())
+        method = key.split(",")[0]
+        marker, colour = _METHOD_STYLE.get(method, ("o", "k"))
+        order = key.rsplit(" ", 1)[-1]
+        ls = {"0": ":", "1": "--"}.get(order, "-")
+        ax.loglog(*zip(*points), marker=marker or ".", color=colour, ls=ls, label=key)
+    ax.set_xlabel("number of positions n")
+    ax.set_ylabel("time per position, ns")
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
+    return ax

@@ -1,0 +1,215 @@
+"""Two links meeting at a hinge: the intersection of two circles (the circle-circle dyad).
+
+Two joints ``p`` and ``q`` move in a known way; a link of length ``length_p`` hangs from ``p``
+and a link of length ``length_q`` from ``q``; the two links meet at the hinge J. J is an
+intersection of the circle of radius ``length_p`` about ``p`` and the circle of radius
+``length_q`` about ``q``. There are two intersections, mirror images in the line through
+``p`` and ``q``; the ``branch`` picks one of them geometrically:
+
+* ``branch = +1``: J lies to the left of the directed line p → q (counter-clockwise side);
+* ``branch = -1``: J lies to the right of it.
+
+In the four-bar (chapter 4) J is the coupler-rocker joint B, ``p`` the crank pin A and ``q`` the
+rocker pivot C.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..core.errors import AssemblyError
+from ..core.validate import require_branch, require_length
+from ..core.angles import angle_of_fast
+from ..core.motion import AngleMotion, PointMotion
+
+__all__ = ["Hinge", "hinge", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
+
+ASSEMBLY_TOLERANCE = 1e-12
+"""Relative overlap of the circles accepted as touching (round-off), as a fraction of L_p + L_q."""
+
+SINGULAR_TOLERANCE = 1e-6
+"""A hinge is marked singular where |sin| of the angle between its links is below this.
+
+At a limit of assembly the round-off of the lengths leaves |sin| of order √ε ≈ 1e-8, and rates
+computed from it would be huge finite numbers; 1e-6 is reached only within about 1e-12 rad of a
+limit, where the rates are indeed beyond any use."""
+
+
+@dataclass(frozen=True)
+class Hinge:
+    """The solved hinge J of two links, with the angles of both links.
+
+    Attributes
+    ----------
+    point : PointMotion
+        J with its velocity and acceleration (m, m/s, m/s²).
+    angle_p : AngleMotion
+        Angle of the link p → J (rad) with ω, α.
+    angle_q : AngleMotion
+        Angle of the link q → J (rad) with ω, α.
+    singular : ndarray of bool
+        True where p, q and J are collinear: the two links are in line, the velocities of J
+        are unbounded and are set to ``nan``.
+    """
+
+    point: PointMotion
+    angle_p: AngleMotion
+    angle_q: AngleMotion
+    singular: np.ndarray
+
+
+def _cramer(conjugate: np.ndarray, rhs: np.ndarray, inverse_det: np.ndarray) -> np.ndarray:
+    """``(u · rhs)/det`` of Cramer's rule: the scalar product Re(conj(u)·rhs) of plane vectors given
+    as complex numbers (with ``conjugate`` = conj(u)), times ``inverse_det``."""
+    return np.multiply(conjugate, rhs).real * inverse_det
+
+
+def _assembly_failure(distance, shape, total: float, difference: float, tolerance: float, angles) -> None:
+    """Raise the :class:`AssemblyError` of :func:`hinge`, naming the positions that fail."""
+    where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), shape)
+    coincident = distance <= tolerance * 1e-3
+    if coincident.any():
+        raise AssemblyError("the two known joints coincide, so the hinge is indeterminate (it can be "
+                            "anywhere on a circle)", None if where is None else where[coincident])
+    far = total - distance < -tolerance
+    near = distance - difference < -tolerance
+    reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "
+              f"lengths {total:g} m)" if far.any() else
+              "one circle lies inside the other (joints closer than the difference of the link "
+              f"lengths {difference:g} m)")
+    if far.any() and near.any():
+        reason += (" and, elsewhere, one circle lies inside the other (joints closer than "
+                   f"{difference:g} m)")
+    raise AssemblyError(reason, None if where is None else where[far | near])
+
+
+def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int = 1,
+          angles: ArrayLike | None = None) -> Hinge:
+    """Solve two links meeting at a hinge: J with |J − p| = L_p and |J − q| = L_q.
+
+    Parameters
+    ----------
+    p, q : PointMotion
+        The known joints (m, m/s, m/s²), arrays over the crank positions.
+    length_p, length_q : float
+        Lengths of the links p → J and q → J (m).
+    branch : int or array of int
+        +1: J to the left of the directed line p → q; -1: to the right. An array (one sign per
+        position) lets a mechanism hold an assembly mode through a change point.
+    angles : array_like, optional
+        The crank angles φ (rad) of the positions, only to name them in an
+        :class:`~mechanisms.errors.AssemblyError`.
+
+    Returns
+    -------
+    Hinge
+        J and the angles of both links, up to order ``min(p.order, q.order)``.
+
+    Raises
+    ------
+    AssemblyError
+        Where the circles do not meet: the joints are farther apart than L_p + L_q, or one
+        circle lies inside the other (distance below |L_p − L_q|).
+
+    Notes
+    -----
+    With ``d = q − p``, ``D = |d|``, J is found in the frame of the line p → q:
+    ``J = p + (m + i·branch·h)·d/D`` with the foot of the perpendicular
+    ``m = (D² + L_p² − L_q²)/(2D)`` and the height
+    ``h = √((L_p + L_q + D)(L_p + L_q − D))·√((D − |L_p − L_q|)(D + |L_p − L_q|))/(2D)`` (Heron), a
+    product in which the two small factors near a limit are computed directly, and whose two roots
+    keep it free of overflow for any lengths between 1e-150 m and 1e150 m; no ``arccos``.
+
+    Velocities: differentiating ``p + r_p = q + r_q`` (r_p = J − p, r_q = J − q) in Euler form,
+    ``iω_p r_p − iω_q r_q = v_q − v_p``; accelerations:
+    ``iα_p r_p − iα_q r_q = a_q − a_p + ω_p² r_p − ω_q² r_q``. Both are solved by Cramer's rule
+    with the determinant ``r_p × r_q`` = L_p L_q sin(θ_q − θ_p), zero where the links are in line
+    (chapter 4; the lecture's crank-rocker is the case p = A, q = C).
+    """
+    length_p = require_length("length_p", length_p)
+    length_q = require_length("length_q", length_q)
+    branch_array = np.asarray(branch)
+    if branch_array.ndim == 0:
+        side = float(require_branch(branch))
+    else:
+        valid = (branch_array == 1) | (branch_array == -1)
+        if not valid.all():
+            require_branch(branch_array[~valid].ravel()[0].item())
+        side = branch_array.astype(float)
+    if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:
+        # one position: solved as an array of one, returned as numbers
+        one = hinge(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles)
+        return Hinge(one.point[0], one.angle_p[0], one.angle_q[0], one.singular[0])
+    order = min(p.order, q.order)
+    d = q.value - p.value
+    distance = np.abs(d)
+    total = length_p + length_q
+    difference = abs(length_p - length_q)
+    tolerance = ASSEMBLY_TOLERANCE * total
+    # the extremes decide whether any position fails; the masks are made only then
+    shortest, longest = (np.min(distance), np.max(distance)) if distance.size else (1.0, 0.0)
+    if shortest <= tolerance * 1e-3 or shortest - difference < -tolerance or total - longest < -tolerance:
+        _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
+    # Heron's product h·D, its two small factors near a limit computed directly and clipped at
+    # zero against round-off (the limits were checked above); two square roots of products of
+    # two lengths each keep it in range for lengths from 1e-150 m to 1e150 m. twice = 2·h·D.
+    # The arrays are computed in place: fewer temporaries stay in the processor's cache (chapter 8).
+    far = np.subtract(total, distance)
+    np.maximum(far, 0.0, out=far)
+    scratch = np.add(distance, total)
+    far *= scratch
+    near = np.subtract(distance, difference)
+    np.maximum(near, 0.0, out=near)
+    near *= np.add(distance, difference, out=scratch)
+    twice = np.sqrt(far, out=far)
+    twice *= np.sqrt(near, out=near)
+    # |sin| of the angle between the links is h·D/(L_p·L_q); the mask uses that ratio
+    singular = twice <= 2.0 * SINGULAR_TOLERANCE * length_p * length_q
+    # r_p = J − p = (m + i·branch·h)·d/D with m/D = (1 + (L_p² − L_q²)/D²)/2 and h/D = h·D/D²
+    inverse_square = np.divide(1.0, distance, out=near)
+    inverse_square *= inverse_square
+    arm_p = np.empty(d.shape, dtype=complex)
+    np.multiply(inverse_square, 0.5 * (length_p - length_q) * (length_p + length_q), out=arm_p.real)
+    arm_p.real += 0.5
+    np.multiply(twice, inverse_square, out=arm_p.imag)
+    arm_p.imag *= 0.5 * side
+    arm_p *= d
+    point = p.value + arm_p
+    arm_q = np.subtract(point, q.value, out=d)          # r_q = J − q (d is not needed any more)
+    theta_p, theta_q = angle_of_fast(arm_p), angle_of_fast(arm_q)
+    if order == 0:
+        return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
+    any_singular = singular.any()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # Solve i·x·r_p − i·y·r_q = rhs for real x, y by Cramer's rule: dotting with r_q removes y,
+        # with r_p removes x, so x = (r_q · rhs)/(r_p × r_q), y = (r_p · rhs)/(r_p × r_q). The
+        # determinant r_p × r_q is branch·h·D of the geometry above, free of cancellation.
+        inverse_det = np.divide(2.0 * side, twice, out=twice)
+        conjugate_p, conjugate_q = np.conjugate(arm_p), np.conjugate(arm_q)
+        rhs = q.velocity - p.velocity
+        omega_p, omega_q = _cramer(conjugate_q, rhs, inverse_det), _cramer(conjugate_p, rhs, inverse_det)
+        if any_singular:
+            np.copyto(omega_p, np.nan, where=singular)
+            np.copyto(omega_q, np.nan, where=singular)
+        velocity = 1j * omega_p
+        velocity *= arm_p
+        velocity += p.velocity                           # v_J = v_p + iω_p r_p
+        if order == 1:
+            return Hinge(PointMotion(point, velocity), AngleMotion(theta_p, omega_p),
+                         AngleMotion(theta_q, omega_q), singular)
+        square_p, square_q = omega_p * omega_p, omega_q * omega_q
+        rhs = square_p * arm_p
+        rhs -= square_q * arm_q
+        rhs += q.acceleration
+        rhs -= p.acceleration
+        alpha_p, alpha_q = _cramer(conjugate_q, rhs, inverse_det), _cramer(conjugate_p, rhs, inverse_det)
+        turn = np.empty(d.shape, dtype=complex)          # iα_p − ω_p²
+        np.negative(square_p, out=turn.real)
+        turn.imag = alpha_p
+        acceleration = np.multiply(turn, arm_p, out=turn)
+        acceleration += p.acceleration                   # a_J = a_p + (iα_p − ω_p²) r_p
+    return Hinge(PointMotion(point, velocity, acceleration), AngleMotion(theta_p, omega_p, alpha_p),
+                 AngleMotion(theta_q, omega_q, alpha_q), singular)

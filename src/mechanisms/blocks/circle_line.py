@@ -1,0 +1,171 @@
+"""Circle–line: a link of known length from a moving joint to a slider on a fixed straight guide.
+
+The rod of the crank-slider (chapter 3), the connecting rod from a slotted lever to the ram of a
+shaper (chapter 5) and every "link ending in a slider" of the lecture are this block: the joint
+J moves, the rod J→B has a fixed length, and B is held on a fixed line. B is where the circle of
+radius ``rod`` about J meets the line; of the two intersections, ``branch`` picks one.
+
+Geometry, in the guide's own frame (unit vector ``e = exp(iδ)`` along the guide, ``i·e`` to its
+left, origin at the point ``P`` the guide passes through)::
+
+    u = Re(ē (J − P))         position of the foot of the perpendicular from J
+    h = Im(ē (J − P))         signed distance of J from the guide (left positive)
+    w = √((rod − h)(rod + h)) half-chord: distance from the foot to B
+    s = u + branch · w        position of B along the guide
+    B = P + s e
+
+The product ``(rod − h)(rod + h)`` instead of ``rod² − h²`` keeps full relative accuracy when
+|h| is close to ``rod`` (no cancellation of two large squares).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..core.errors import AssemblyError, InvalidParameterError
+from ..core.validate import require_branch, require_finite, require_length
+from ..core.motion import AngleMotion, Motion, PointMotion
+
+__all__ = ["SliderOnLine", "slider_on_line"]
+
+# A joint this much (relative to the rod) beyond the reach of the rod is taken as just reaching it:
+# a few units of round-off in h, e.g. from sin(φ) at a crank angle that is exactly a dead centre.
+_REACH_TOLERANCE = 8.0 * np.finfo(float).eps
+_SINGULAR_FACTOR = 100.0
+"""w² below this many times its round-off is a dead centre (w ≲ 6e-7·rod for unit sizes)."""
+
+
+@dataclass(frozen=True)
+class SliderOnLine:
+    """The solution of the circle–line block over the crank positions.
+
+    Attributes
+    ----------
+    point : PointMotion
+        The slider joint B ``x + iy`` (m) with its velocity (m/s) and acceleration (m/s²).
+    rod_angle : AngleMotion
+        The angle of the rod, the vector from the joint J to B (rad), with ω (rad/s) and
+        α (rad/s²); for the crank-slider this is the coupler angle ψ.
+    travel : Motion
+        The signed position s of B along the guide (m), measured from the guide's point
+        ``through`` in the guide's direction, with ``s_t`` (m/s) and ``s_tt`` (m/s²).
+    singular : ndarray of bool
+        True where the rod is perpendicular to the guide (|h| = rod): B's velocity along the
+        guide is unbounded there, and the derivatives are ``inf`` or ``nan`` on purpose.
+    """
+
+    point: PointMotion
+    rod_angle: AngleMotion
+    travel: Motion
+    singular: np.ndarray
+
+
+def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direction: float = 0.0,
+                   branch: int = 1, angles: ArrayLike | None = None) -> SliderOnLine:
+    """Solve a rod from a moving joint J to a slider B on a fixed straight guide.
+
+    Parameters
+    ----------
+    joint : PointMotion
+        The joint J at the rod's other end (m, m/s, m/s²); its order (0, 1 or 2) sets the order of
+        the result. Arrays of any shape (one entry per crank position).
+    rod : float
+        The rod's length |JB| (m), finite and > 0. In the book's notation L2 (or l_BC in source 004).
+    through : complex
+        A point of the guide ``x + iy`` (m); the slider's travel s is measured from it.
+    direction : float
+        The guide's direction δ (rad), counter-clockwise from +x; s grows in this direction.
+    branch : int
+        +1: B lies ahead of the foot of the perpendicular from J (in the guide's direction);
+        −1: behind it. For the crank-slider with the guide along +x, +1 puts the slider on the
+        right of the crank pin.
+    angles : array_like, optional
+        The crank angles (rad) of the positions, used only to name them in an
+        :class:`~mechanisms.errors.AssemblyError`.
+
+    Returns
+    -------
+    SliderOnLine
+        B's motion, the rod's angle, the travel s along the guide and the mask of positions where
+        the rod is perpendicular to the guide.
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``rod`` is not a finite length > 0, ``through`` or ``direction`` is not finite, or
+        ``branch`` is not ±1.
+    AssemblyError
+        Where J is farther from the guide than the rod is long (|h| > rod): the rod cannot reach it.
+
+    Notes
+    -----
+    With the guide frame of the module docstring and ``w = √((rod − h)(rod + h))``:
+
+    * positions: ``s = u + b·w``, ``B = P + s·e``, rod angle ``θ = δ + atan2(−h, b·w)``;
+    * velocities: ``u_t = Re(ē J_t)``, ``h_t = Im(ē J_t)``, ``w_t = −h h_t / w``,
+      ``s_t = u_t + b·w_t``, ``θ_t = −b·h_t / w``;
+    * accelerations: ``w_tt = −(h_t² + h h_tt + w_t²) / w``, ``s_tt = u_tt + b·w_tt``,
+      ``θ_tt = −(b·h_tt + θ_t w_t) / w``,
+
+    from differentiating ``w² + h² = rod²`` and ``rod·sin(θ − δ) = −h`` (chapter 3). Where
+    ``w = 0`` (the rod perpendicular to the guide) the derivatives divide by zero: they are unbounded
+    (``±inf``) or undefined (``nan`` if J moves parallel to the guide there), and ``singular`` marks
+    them; so does a w² within 100 times its round-off of zero, where the computed w is mostly
+    round-off and would give huge finite rates (the crank angles of a limit of assembly, found
+    by an arcsin, land there). A joint beyond reach by more than the round-off of
+    ``w²`` (``8ε·rod·(rod + |J − P|)``) is an assembly error; one within it is taken as at reach.
+    """
+    rod = require_length("rod", rod)
+    branch = require_branch(branch)
+    direction = require_finite("direction", direction)
+    through = complex(through)
+    if not (np.isfinite(through.real) and np.isfinite(through.imag)):
+        raise InvalidParameterError("through", through, "a finite point x + iy (m)")
+    e = np.exp(1j * direction)
+    e_conj = np.conj(e)
+
+    local = e_conj * (np.asarray(joint.value, dtype=complex) - through)
+    u, h = local.real, local.imag
+    reach = (rod - h) * (rod + h)  # w², free of cancellation near |h| = rod
+    # the round-off of w²: h carries that of the joint's coordinates, so it scales with |J − P| too
+    slack = _REACH_TOLERANCE * rod * (rod + np.abs(local))
+    unreachable = reach < -slack
+    if np.any(unreachable):
+        worst = float(np.max(np.abs(h)))
+        where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), h.shape)[unreachable]
+        reason = (f"the rod cannot reach its guide: the rod is {rod:g} m long but its far joint is up to "
+                  f"{worst:.6g} m from the guide")
+        if where is None:
+            reason += f" (at {int(np.count_nonzero(unreachable))} position(s))"
+        raise AssemblyError(reason, angles=where)
+    # within round-off of the rod standing perpendicular to the guide, w itself is unknown: the
+    # position is that limit (w = 0) and its derivatives are unbounded, not large finite numbers
+    singular = reach <= _SINGULAR_FACTOR * slack
+    w = np.where(singular, 0.0, np.sqrt(np.maximum(reach, 0.0)))
+
+    s = u + branch * w
+    position = through + s * e
+    rod_angle = direction + np.arctan2(-h, branch * w)
+    order = joint.order
+    if order == 0:
+        return SliderOnLine(PointMotion(position), AngleMotion(rod_angle), Motion(s), singular)
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        local_t = e_conj * joint.velocity
+        u_t, h_t = local_t.real, local_t.imag
+        w_t = -h * h_t / w
+        s_t = u_t + branch * w_t
+        theta_t = -branch * h_t / w
+        if order == 1:
+            point = PointMotion(position, s_t * e)
+            return SliderOnLine(point, AngleMotion(rod_angle, theta_t), Motion(s, s_t), singular)
+        local_tt = e_conj * joint.acceleration
+        u_tt, h_tt = local_tt.real, local_tt.imag
+        w_tt = -(h_t**2 + h * h_tt + w_t**2) / w
+        s_tt = u_tt + branch * w_tt
+        theta_tt = -(branch * h_tt + theta_t * w_t) / w
+        point = PointMotion(position, s_t * e, s_tt * e)
+    return SliderOnLine(point, AngleMotion(rod_angle, theta_t, theta_tt), Motion(s, s_t, s_tt), singular)

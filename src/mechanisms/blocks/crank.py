@@ -1,0 +1,49 @@
+"""The driving crank: a link turning a full revolution about a fixed pivot."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..core.validate import require_finite_array, require_order
+from ..core.angles import constant
+from ..core.motion import AngleMotion, PointMotion, point_on_link
+
+__all__ = ["crank_angle", "crank_pin"]
+
+
+def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order: int = 2) -> AngleMotion:
+    """The crank's angle φ with φ_t = ω and φ_tt = α, as arrays over the positions.
+
+    Parameters
+    ----------
+    phi : array_like
+        Crank angles φ (rad), counter-clockwise from +x.
+    omega : float or array_like
+        Angular velocity φ_t (rad/s) at each position.
+    alpha : float or array_like
+        Angular acceleration φ_tt (rad/s²) at each position.
+    order : int
+        0, 1 or 2: how many time derivatives to keep.
+
+    Notes
+    -----
+    A constant ω or α is kept as a read-only view of one number
+    (:func:`~mechanisms.motion.constant`), which takes no memory.
+    """
+    order = require_order(order)
+    phi = require_finite_array("phi", phi, "crank angles in rad")
+    if order == 0:
+        return AngleMotion(phi)
+    derivatives = []
+    for name, value in (("omega", omega), ("alpha", alpha))[:order]:
+        value = require_finite_array(name, value, "rad/s" if name == "omega" else "rad/s²")
+        # a constant rate is a broadcast view of one number (no memory); an array is copied
+        derivatives.append(constant(float(value), phi.shape) if value.ndim == 0
+                           else np.broadcast_to(value, phi.shape).astype(float))
+    return AngleMotion(phi, *derivatives)
+
+
+def crank_pin(angle: AngleMotion, length: float, pivot: complex = 0.0) -> PointMotion:
+    """The crank pin A at distance L1 from the pivot O: ``r_A = r_O + L1·exp(iφ)``."""
+    return point_on_link(complex(pivot), angle, length)

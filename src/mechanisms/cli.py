@@ -1,0 +1,355 @@
+"""Layer 6: the command-line tool, ``python -m mechanisms``.
+
+``table`` prints the kinematic table of a mechanism over crank positions, like the classic
+course programs do for 12 positions. Every mechanism class that sets ``cli_name`` appears
+as a ``table`` subcommand with its ``cli_parameters``; degrees at the interface, radians inside.
+``assign`` and ``check`` set and grade course assignments (:mod:`mechanisms.assign`,
+:mod:`mechanisms.grading`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import math
+import os
+import re
+import sys
+import warnings
+from typing import Sequence
+
+import numpy as np
+
+from .linkages.base import Mechanism, Solution, registry
+from .core.errors import DeadCentreWarning, InvalidParameterError, MechanismError
+from .core.motion import Motion
+
+__all__ = ["main", "kinematic_table", "parse_angles", "parse_point", "MAX_POSITIONS"]
+
+MAX_POSITIONS = 10_000_000
+"""The most crank positions a table may have (a larger one would not fit in memory as text)."""
+
+
+def parse_angles(text: str) -> np.ndarray:
+    """``START:STOP:STEP`` in degrees (stop excluded) → crank angles in rad."""
+    try:
+        start, stop, step = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise InvalidParameterError("--angles", text, "START:STOP:STEP in degrees, e.g. 0:360:30") from None
+    if not all(math.isfinite(v) for v in (start, stop, step)) or step == 0 or (stop - start) / step <= 0:
+        raise InvalidParameterError("--angles", text, "START:STOP:STEP with a step that reaches STOP")
+    # count the positions first: np.arange with a fractional step may include STOP by round-off
+    count = math.ceil((stop - start) / step - 1e-9)
+    if count > MAX_POSITIONS:
+        raise InvalidParameterError("--angles", text, f"at most {MAX_POSITIONS} positions")
+    return np.radians(start + step * np.arange(count))
+
+
+def parse_point(text: str) -> tuple[str, str, float, float]:
+    """``NAME=LINK:U[,V]`` → (name, link, u, v) with u, v in m."""
+    try:
+        name, rest = text.split("=", 1)
+        link, coords = rest.split(":", 1)
+        values = [float(v) for v in coords.split(",")]
+        if not name or not link or len(values) not in (1, 2) or not all(map(math.isfinite, values)):
+            raise ValueError
+    except ValueError:
+        raise InvalidParameterError("--point", text, "NAME=LINK:U or NAME=LINK:U,V (m), e.g. S2=coupler:0.09") from None
+    return name, link, values[0], values[1] if len(values) == 2 else 0.0
+
+
+def _pair(text: str) -> tuple[float, float]:
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"expected two numbers A,B, got {text!r}")
+    return float(parts[0]), float(parts[1])
+
+
+_KINDS = {"length": float, "number": float, "angle": float, "pair": _pair, "branch": int}
+
+
+def _class_value(parameter, value):
+    """A command-line value as the mechanism's class takes it: angles from degrees to radians."""
+    return math.radians(value) if parameter.kind == "angle" and value is not None else value
+
+
+def _number(value: float):
+    """A JSON-safe number: unbounded values (dead centres) become null."""
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def kinematic_table(mechanism: Mechanism, solution: Solution,
+                    points: Sequence[tuple[str, str, float, float]] = ()) -> list[dict]:
+    """Rows of the kinematic table: one dict per crank position, keys as in DESIGN.md's JSON."""
+    extra = {name: solution.point_on(link, u, v) for name, link, u, v in points}
+    all_points = {name: solution.point(name) for name in solution.point_names} | extra
+    rows = []
+    for i in range(len(solution)):
+        links = {}
+        for name in solution.angle_names:
+            a = solution.angle(name)
+            links[name] = {"angle_deg": _number(np.degrees(a.value[i])), "omega": _number(a.omega[i]),
+                           "alpha": _number(a.alpha[i])}
+        pts = {}
+        for name, p in all_points.items():
+            pts[name] = {"x": _number(p.x[i]), "y": _number(p.y[i]),
+                         "vx": _number(p.velocity[i].real), "vy": _number(p.velocity[i].imag),
+                         "ax": _number(p.acceleration[i].real), "ay": _number(p.acceleration[i].imag)}
+        sliders = {}
+        for name in solution.slider_names:
+            s: Motion = solution.slider(name)
+            sliders[name] = {"s": _number(s.value[i]), "v": _number(s.velocity[i]), "a": _number(s.acceleration[i])}
+            for key, values in solution.extras.get(name, {}).items():
+                sliders[name][key] = _number(values[i])
+        rows.append({"phi_deg": _number(round(float(np.degrees(solution.phi[i])), 9)), "links": links, "points": pts,
+                     "sliders": sliders})
+    return rows
+
+
+def _flat(row: dict) -> dict:
+    flat = {"phi_deg": row["phi_deg"]}
+    for group in ("links", "points", "sliders"):
+        for name, values in row[group].items():
+            for key, value in values.items():
+                flat[f"{name}.{key}"] = value
+    return flat
+
+
+_UNITS = {"angle_deg": "°", "omega": "1/s", "alpha": "1/s²", "x": "m", "y": "m", "vx": "m/s", "vy": "m/s",
+          "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s", "a": "m/s²", "coriolis": "m/s²"}
+
+
+def _readable(value: float | None, scale: float) -> str:
+    """Six significant digits; round-off below 1e-12 of the column's scale printed as 0."""
+    if value is None:
+        return "—"
+    return "0" if abs(value) <= 1e-12 * scale else f"{value:.6g}"
+
+
+def _text_block(title: str, rows: list[dict], group: str, name: str) -> str:
+    keys = list(rows[0][group][name])
+    headers = ["φ, °"] + [f"{k.removesuffix('_deg')}, {_UNITS.get(k, '')}".rstrip(", ") for k in keys]
+    scales = {k: max((abs(r[group][name][k]) for r in rows if r[group][name][k] is not None), default=0.0)
+              for k in keys}
+    body = [[f"{r['phi_deg']:.1f}"] + [_readable(r[group][name][k], scales[k]) for k in keys] for r in rows]
+    widths = [max(len(h), *(len(b[j]) for b in body)) for j, h in enumerate(headers)]
+    lines = [title, "  ".join(h.rjust(w) for h, w in zip(headers, widths))]
+    lines += ["  ".join(c.rjust(w) for c, w in zip(b, widths)) for b in body]
+    return "\n".join(lines)
+
+
+def _format(mechanism: Mechanism, omega: float, alpha: float, rows: list[dict], fmt: str) -> str:
+    if fmt == "json":
+        # as the command line takes them: angles in degrees, named like the rows' angle_deg
+        parameters = {f"{p.name}_deg" if p.kind == "angle" else p.name:
+                      math.degrees(value) if p.kind == "angle" else value
+                      for p, value in zip(mechanism.cli_parameters, mechanism.parameters().values())}
+        return json.dumps({"mechanism": mechanism.cli_name, "parameters": parameters |
+                           {"omega": omega, "alpha": alpha}, "rows": rows}, indent=1, ensure_ascii=False)
+    if fmt == "csv":
+        out = io.StringIO()
+        flats = [_flat(r) for r in rows]
+        writer = csv.DictWriter(out, fieldnames=list(flats[0]), lineterminator="\n")
+        writer.writeheader()
+        writer.writerows({k: ("" if v is None else v) for k, v in f.items()} for f in flats)
+        return out.getvalue().rstrip("\n")
+    blocks = [f"{mechanism.describe()}; omega = {omega:g} 1/s, alpha = {alpha:g} 1/s²"]
+    for group, label in (("links", "link"), ("points", "point"), ("sliders", "slider")):
+        for name in rows[0][group]:
+            blocks.append(_text_block(f"{label} {name}", rows, group, name))
+    return "\n\n".join(blocks)
+
+
+def _table(args: argparse.Namespace) -> str:
+    cls = registry[args.mechanism]
+    mechanism = cls(**{p.name: _class_value(p, getattr(args, p.name)) for p in cls.cli_parameters})
+    positions = 12 if args.positions is None else args.positions
+    if not args.angles and not 1 <= positions <= MAX_POSITIONS:
+        raise InvalidParameterError("--positions", positions, f"a whole number from 1 to {MAX_POSITIONS}")
+    phi = parse_angles(args.angles) if args.angles else np.radians(np.arange(positions) * 360.0 / positions)
+    points = [parse_point(p) for p in args.point]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeadCentreWarning)  # unbounded values print as — / null
+        solution = mechanism.solve(phi, args.omega, args.alpha, order=2)
+    for name, link, _, _ in points:
+        if name in solution.point_names or [n for n, *_ in points].count(name) > 1:
+            raise InvalidParameterError("--point", name, "a new name, not a joint's or another point's")
+        if link not in cls.links:
+            raise InvalidParameterError("--point", f"{name}={link}", f"on one of the links {', '.join(cls.links)}")
+    return _format(mechanism, args.omega, args.alpha, kinematic_table(mechanism, solution, points), args.format)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``python -m mechanisms``."""
+    parser = argparse.ArgumentParser(prog="python -m mechanisms",
+                                     description="Kinematics of planar linkage mechanisms: the book's tool.")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    table = commands.add_parser("table", help="kinematic table of a mechanism over crank positions",
+                                description="Print the kinematic table of a mechanism over crank positions.")
+    kinds = table.add_subparsers(dest="mechanism", metavar="MECHANISM")
+    for name, cls in sorted(registry.items()):
+        sub = kinds.add_parser(name, help=(cls.__doc__ or name).strip().splitlines()[0],
+                               description=(cls.__doc__ or name).strip().splitlines()[0])
+        for p in cls.cli_parameters:
+            sub.add_argument(f"--{p.name.replace('_', '-')}", dest=p.name, type=_KINDS[p.kind],
+                             required=p.default is None, default=p.default, help=p.help)
+        sub.add_argument("--omega", type=float, required=True, help="crank angular velocity ω1, 1/s")
+        sub.add_argument("--alpha", type=float, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
+        where = sub.add_mutually_exclusive_group()
+        where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
+        where.add_argument("--positions", type=int, default=None, help="N positions evenly over a turn (default 12)")
+        sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,V]",
+                         help="a point fixed to LINK, U m along it from its first joint, V m to its left")
+        sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
+    _add_course_commands(commands)
+    _add_bench_command(commands)
+    return parser
+
+
+def _add_bench_command(commands) -> None:
+    """The subcommand ``bench``: time per position against error (:mod:`mechanisms.bench`)."""
+    bench = commands.add_parser(
+        "bench", help="time per position against error: closed form, Newton, finite differences, peers",
+        description="Time every method of chapter 8 on the crank-slider, the four-bar and the slotted lever, side "
+                    "by side in one process: time per position (best of R runs) and the largest error against "
+                    "an extended-precision reference. pylinkage is timed too when installed (the bench extra).")
+    bench.add_argument("--sizes", default="1000,100000,1000000", metavar="N,N,…",
+                       help="numbers of crank positions (default 1000,100000,1000000)")
+    bench.add_argument("--repeat", type=int, default=3, metavar="R", help="best of R runs (default 3)")
+    bench.add_argument("--format", choices=("text", "json"), default="text")
+
+
+def _bench(args: argparse.Namespace) -> str:
+    from . import bench
+
+    try:
+        sizes = [int(v) for v in args.sizes.split(",")]
+    except ValueError:
+        raise InvalidParameterError("--sizes", args.sizes, "whole numbers N,N,… ≥ 1") from None
+    if not sizes or min(sizes) < 1:
+        raise InvalidParameterError("--sizes", args.sizes, "whole numbers N,N,… ≥ 1")
+    if args.repeat < 1:
+        raise InvalidParameterError("--repeat", args.repeat, "a whole number ≥ 1")
+    report = bench.run(sizes, args.repeat)
+    return bench.format_json(report) if args.format == "json" else bench.format_text(report)
+
+
+def _add_course_commands(commands) -> None:
+    """The subcommands ``assign`` and ``check``: course assignments (:mod:`mechanisms.assign`) and
+    their grading (:mod:`mechanisms.grading`)."""
+    from .course.assign import TASKS
+    from .course.grading import DEFAULT_RELATIVE
+
+    assign = commands.add_parser(
+        "assign", help="make a variant of a mechanism for every student: sheets and an answer key",
+        description="Make N valid variants of a mechanism (lengths, crank speed, crank positions), a printable "
+                    "sheet for each (HTML and Markdown), an answer form for each, and one answer key (key.csv).")
+    assign.add_argument("mechanism", choices=sorted(TASKS), metavar="MECHANISM",
+                        help="one of " + ", ".join(sorted(TASKS)))
+    assign.add_argument("--students", type=int, required=True, help="number of students N (variants s01 … sNN)")
+    assign.add_argument("--seed", type=int, default=None,
+                        help="seed of the random variants (default: a new one, printed so the run can be repeated)")
+    assign.add_argument("--positions", type=int, default=3, help="crank positions per variant (default 3)")
+    assign.add_argument("--out", default="assignment", help="output folder (default ./assignment)")
+    check = commands.add_parser(
+        "check", help="grade answer files against an answer key",
+        description="Grade answer files against the key written by `assign`: per student and per quantity, what is "
+                    "right, what is wrong and by how much, and which answers are missing or unreadable.")
+    check.add_argument("key", metavar="KEY.csv", help="the answer key written by `assign`")
+    check.add_argument("answers", metavar="ANSWERS.csv", nargs="+", help="one or more answer files")
+    check.add_argument("--relative", type=float, default=100 * DEFAULT_RELATIVE, metavar="PERCENT",
+                       help=f"relative tolerance in %% (default {100 * DEFAULT_RELATIVE:g}); each kind of quantity "
+                            "also has an absolute floor")
+    check.add_argument("--marks", metavar="FILE.csv", help="also write every mark to this CSV file")
+
+
+def _assign(args: argparse.Namespace) -> str:
+    import secrets
+
+    from .course.assign import make_variants, write_assignment
+
+    seed = args.seed if args.seed is not None else secrets.randbelow(10**6)
+    variants = make_variants(args.mechanism, args.students, seed, args.positions)
+    written = write_assignment(args.mechanism, variants, args.out, seed=seed)
+    first, last = variants[0].student, variants[-1].student
+    return "\n".join([
+        f"{args.mechanism}: {len(variants)} variants ({first} … {last}), seed {seed}, written to {args.out}/:",
+        f"  sheets        {first}.html … {last}.html and {first}.md … {last}.md (drawings {first}.png …)",
+        f"  answer forms  {first}-answers.csv … {last}-answers.csv",
+        f"  answer key    {written['key'][0].name}   (keep it from the students)",
+        f"  variants      {written['variants'][0].name}",
+        f"Grade with: python -m mechanisms check {written['key'][0]} ANSWERS.csv …"])
+
+
+def _check(args: argparse.Namespace) -> tuple[str, int]:
+    from .course.grading import check_files
+
+    if not (math.isfinite(args.relative) and 0.0 <= args.relative < 100.0):
+        raise InvalidParameterError("--relative", args.relative, "a percentage from 0 to less than 100")
+    report = check_files(args.key, args.answers, relative=args.relative / 100.0)
+    if args.marks:
+        with open(args.marks, "w", encoding="utf8", newline="") as handle:
+            handle.write(report.csv())
+    return report.text(), (1 if report.problems else 0)
+
+
+_PAIR = re.compile(r"^-?[\d.]+([eE][-+]?\d+)?,-?[\d.]+([eE][-+]?\d+)?$")
+
+
+def _join_negative_pairs(argv: Sequence[str]) -> list[str]:
+    """``--frame -0.4,0.05`` → ``--frame=-0.4,0.05``: argparse takes a value starting with − for an option."""
+    out: list[str] = []
+    for token in argv:
+        if out and out[-1].startswith("--") and "=" not in out[-1] and token.startswith("-") and _PAIR.match(token):
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status (0 ok, 2 bad input).
+
+    ``check`` returns 1 when it graded the answers but found problems in the answer files
+    (unknown student ids, repeated rows …), and 2 when a file could not be graded at all.
+    """
+    parser = build_parser()
+    args = parser.parse_args(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv)))
+    if args.command is None:
+        parser.print_help()
+        return 0
+    if args.command == "bench":
+        try:
+            print(_bench(args))
+        except MechanismError as error:
+            print(f"error: {error}", file=sys.stderr)
+            return 2
+        return 0
+    if args.command in ("assign", "check"):
+        try:
+            if args.command == "assign":
+                print(_assign(args))
+                return 0
+            text, status = _check(args)
+            print(text)
+            return status
+        except MechanismError as error:
+            print(f"error: {error}", file=sys.stderr)
+            return 2
+        except OSError as error:
+            print(f"error: {error.filename or ''}: {error.strerror}", file=sys.stderr)
+            return 2
+    if args.command == "table" and args.mechanism is None:
+        print("error: name a mechanism: " + ", ".join(sorted(registry)) + " (see `table --help`)", file=sys.stderr)
+        return 2
+    try:
+        print(_table(args))
+    except MechanismError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # the reader (e.g. `head`) stopped early: not an error
+        sys.stdout = open(os.devnull, "w")
+    return 0

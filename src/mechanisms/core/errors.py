@@ -1,0 +1,92 @@
+"""Errors and warnings of the package.
+
+Every error names what a student can act on: the parameter and its value, or the crank
+angles where a mechanism cannot be assembled, and why.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+__all__ = [
+    "MechanismError",
+    "InvalidParameterError",
+    "AssemblyError",
+    "DeadCentreWarning",
+    "describe_angles",
+    "describe_range",
+]
+
+
+class MechanismError(Exception):
+    """Base class of the errors raised by :mod:`mechanisms`."""
+
+
+class InvalidParameterError(MechanismError, ValueError):
+    """A parameter has a value the model cannot use.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name as the caller wrote it (``"crank"``, ``"rod"`` ...).
+    value : object
+        The value that was given.
+    requirement : str
+        What is required, in words ("a finite length > 0 m").
+    """
+
+    def __init__(self, name: str, value: object, requirement: str):
+        self.name = name
+        self.value = value
+        self.requirement = requirement
+        super().__init__(f"{name} must be {requirement}: got {name} = {value!r}")
+
+
+class AssemblyError(MechanismError, ValueError):
+    """The mechanism cannot be assembled at some crank angles.
+
+    Parameters
+    ----------
+    reason : str
+        Why it cannot be assembled ("the rod cannot reach the guide").
+    angles : array_like of float, optional
+        The crank angles (rad) where assembly fails; named in the message in degrees.
+    valid_range : tuple of float, optional
+        The crank-angle interval (rad) in which the mechanism assembles, if known.
+    """
+
+    def __init__(self, reason: str, angles: ArrayLike | None = None, valid_range: tuple[float, float] | None = None):
+        self.reason = reason
+        self.angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
+        self.valid_range = valid_range
+        message = reason
+        if self.angles is not None and self.angles.size:
+            message += f" at crank angle(s) {describe_angles(self.angles)}"
+        if valid_range is not None:
+            message += f"; it assembles only for crank angles in {describe_range(*valid_range)}"
+        super().__init__(message)
+
+
+class DeadCentreWarning(UserWarning):
+    """Velocities or accelerations are unbounded at some crank angles (a dead centre).
+
+    The solution marks these angles in ``Solution.singular`` and sets the unbounded values
+    to ``inf``/``nan`` on purpose; this warning says so, so nothing is NaN silently.
+    """
+
+
+def describe_angles(angles: ArrayLike, limit: int = 6) -> str:
+    """Return crank angles (rad) as a short list in degrees, for messages."""
+    deg = np.degrees(np.atleast_1d(np.asarray(angles, dtype=float)))
+    shown = ", ".join(f"{d:.6g}°" for d in deg[:limit])  # exact enough to find the position again
+    if deg.size > limit:
+        shown += f", … ({deg.size} angles in all)"
+    return shown
+
+
+def describe_range(low: float, high: float) -> str:
+    """A crank-angle interval (rad) for messages: ``[-44.43°, 224.43°]``."""
+    return f"[{math.degrees(low):.2f}°, {math.degrees(high):.2f}°]"

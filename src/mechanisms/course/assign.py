@@ -1,0 +1,575 @@
+"""Layer 6: course assignments — one variant of a mechanism per student, its sheet and the key.
+
+A teacher runs ``python -m mechanisms assign MECHANISM --students N --seed S --out DIR`` and
+gets, for every student, a variant of the same mechanism with its own lengths, crank speed and
+crank positions, a printable sheet (``sNN.html`` with the drawing embedded, and the same text
+in ``sNN.md`` beside the drawing ``sNN.png``), an answer form (``sNN-answers.csv``), and one
+answer key for the class (``key.csv``) with ``variants.json`` recording every variant. The
+answers are graded by ``python -m mechanisms check`` (:mod:`mechanisms.grading`).
+
+Every variant is valid: it is drawn at random from ranges that suit the mechanism, rounded to
+whole millimetres, and kept only if the mechanism's own analysis says it works over the whole
+revolution (see each :class:`Task`'s ``check``). Variant *i* of seed *S* depends only on *S*
+and *i*, so a class can grow without changing the variants already handed out.
+
+Column names of the key are those of ``python -m mechanisms table … --format csv``:
+``LINK.angle_deg``, ``LINK.omega``, ``LINK.alpha``, ``POINT.x`` …, ``SLIDER.s``, ``SLIDER.v``,
+``SLIDER.a`` (and ``SLIDER.coriolis``).
+"""
+
+from __future__ import annotations
+
+import base64
+import csv
+import html
+import io
+import json
+import math
+import pathlib
+import warnings
+from dataclasses import dataclass
+from typing import Callable, Sequence
+
+import numpy as np
+
+from ..analysis.crank_slider import full_revolution
+from ..analysis.four_bar import grashof_class, transmission_extremes
+from ..analysis.slotted import time_ratio as slotted_time_ratio
+from ..linkages.base import Mechanism, Solution
+from ..linkages.crank_slider import CrankSlider
+from ..core.errors import DeadCentreWarning, InvalidParameterError, MechanismError
+from ..linkages.four_bar import FourBar
+from ..linkages.slotted import SlottedLever
+
+__all__ = [
+    "Quantity",
+    "Task",
+    "Variant",
+    "TASKS",
+    "quantity_values",
+    "make_variant",
+    "make_variants",
+    "answer_key",
+    "KEY_COLUMNS",
+    "sheet_markdown",
+    "sheet_html",
+    "write_assignment",
+]
+
+KEY_COLUMNS = ("student", "position", "phi_deg")
+"""The columns of the key (and of an answer file) before the quantities."""
+
+STEP_DEG = 15
+"""The crank positions of a variant are multiples of this angle (degrees)."""
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A quantity a student computes, named as the ``table`` command's CSV column.
+
+    Attributes
+    ----------
+    column : str
+        ``NAME.KEY``, e.g. ``"coupler.omega"`` or ``"B.v"``.
+    symbol : str
+        The book's symbol (``"ω₂"``), for the sheet.
+    meaning : str
+        In words, with the sign convention.
+    unit : str
+    """
+
+    column: str
+    symbol: str
+    meaning: str
+    unit: str
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One student's variant: the mechanism, the crank speed and the crank positions.
+
+    Attributes
+    ----------
+    student : str
+        The student's id (``"s01"``).
+    mechanism : Mechanism
+    omega : float
+        Constant crank angular velocity φ_t (rad/s), counter-clockwise.
+    positions_deg : tuple of float
+        Crank angles φ (degrees) at which the quantities are asked for.
+    """
+
+    student: str
+    mechanism: Mechanism
+    omega: float
+    positions_deg: tuple[float, ...]
+
+    def solve(self) -> Solution:
+        """The package's solution at the variant's positions (up to accelerations)."""
+        return self.mechanism.solve(np.radians(self.positions_deg), self.omega, 0.0, order=2)
+
+    def record(self) -> dict:
+        """The variant as plain data (for ``variants.json``)."""
+        parameters = {name: (list(value) if isinstance(value, tuple) else value)
+                      for name, value in self.mechanism.parameters().items()}
+        if isinstance(self.mechanism, CrankSlider):
+            parameters["branch"] = self.mechanism.branch
+        return {"student": self.student, "mechanism": self.mechanism.cli_name, "parameters": parameters,
+                "omega": self.omega, "positions_deg": list(self.positions_deg)}
+
+
+@dataclass(frozen=True)
+class Task:
+    """What an assignment on one mechanism asks and how its variants are drawn.
+
+    Attributes
+    ----------
+    name : str
+        The mechanism's command-line name.
+    title : str
+        For the sheet's heading.
+    sample : callable
+        ``sample(rng) -> (mechanism, omega)``: a candidate variant from a numpy Generator.
+    check : callable
+        ``check(mechanism) -> list of str``: why the candidate is not a good variant (empty: good).
+    data : callable
+        ``data(mechanism) -> list of (symbol, meaning, value, unit)``: the sheet's data table.
+    quantities : tuple of Quantity
+        What is asked at every position.
+    conditions : str
+        The validity conditions in words (for the course page and the sheet's footer).
+    """
+
+    name: str
+    title: str
+    sample: Callable[[np.random.Generator], tuple[Mechanism, float]]
+    check: Callable[[Mechanism], list[str]]
+    data: Callable[[Mechanism], list[tuple[str, str, str, str]]]
+    quantities: tuple[Quantity, ...]
+    conditions: str
+
+
+def _mm(value: float) -> float:
+    """Round a length to whole millimetres (m)."""
+    return round(float(value), 3)
+
+
+def _speed(rng: np.random.Generator, low: int, high: int) -> float:
+    """A crank speed (rad/s) that is a multiple of 5 in [low, high]."""
+    return float(5 * rng.integers(low // 5, high // 5 + 1))
+
+
+# --- crank-slider ------------------------------------------------------------------------------------
+
+CRANK_SLIDER_MIN_TRANSMISSION_DEG = 45.0
+"""Smallest transmission angle μ of a crank-slider variant (degrees), see :func:`crank_slider_transmission_min`."""
+
+
+def crank_slider_transmission_min(mechanism: CrankSlider) -> float:
+    """Smallest transmission angle μ (rad) of a crank-slider whose crank turns fully.
+
+    Notes
+    -----
+    μ is the angle between the rod and the normal to the guide at B, μ = π/2 − |ψ| (ψ measured from
+    the guide's direction). |ψ| is largest when the crank pin is farthest from the guide,
+    L1 + |e|, so ``sin |ψ|_max = (L1 + |e|)/L2`` (chapter 3), computed here with atan2.
+    """
+    reach = mechanism.crank + abs(mechanism.offset)
+    psi_max = math.atan2(reach, math.sqrt((mechanism.rod - reach) * (mechanism.rod + reach)))
+    return 0.5 * math.pi - psi_max
+
+
+def _sample_crank_slider(rng: np.random.Generator) -> tuple[CrankSlider, float]:
+    crank = _mm(rng.uniform(0.040, 0.120))
+    rod = _mm(crank / rng.uniform(0.20, 0.35))         # λ = L1/L2 of engines and compressors
+    offset = 0.0 if rng.random() < 0.5 else _mm(rng.choice([-1.0, 1.0]) * rng.uniform(0.05, 0.30) * crank)
+    return CrankSlider(crank=crank, rod=rod, offset=offset), _speed(rng, 50, 300)
+
+
+def _check_crank_slider(mechanism: CrankSlider) -> list[str]:
+    problems = []
+    if not (full_revolution(mechanism) and mechanism.rod > mechanism.crank + abs(mechanism.offset)):
+        problems.append("the crank does not turn a full revolution (L2 > L1 + |e| is needed)")
+    elif math.degrees(crank_slider_transmission_min(mechanism)) < CRANK_SLIDER_MIN_TRANSMISSION_DEG:
+        problems.append("the smallest transmission angle is below "
+                        f"{CRANK_SLIDER_MIN_TRANSMISSION_DEG:g}°")
+    return problems
+
+
+def _data_crank_slider(m: CrankSlider) -> list[tuple[str, str, str, str]]:
+    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
+            ("L2", "coupler (connecting-rod) length |AB|", f"{m.rod:.3f}", "m"),
+            ("e", "offset: the guide is the line y = e", f"{m.offset:.3f}", "m"),
+            ("", "assembly", "the slider B to the right of the crank pin A (x_B > x_A)", "")]
+
+
+# --- four-bar (crank-rocker) ---------------------------------------------------------------------------
+
+FOUR_BAR_TRANSMISSION_DEG = (35.0, 145.0)
+"""The transmission angle μ of a four-bar variant stays within these bounds (degrees)."""
+FOUR_BAR_GRASHOF_MARGIN = 0.02
+"""(p + q) − (s + l) of a four-bar variant is at least this fraction of the sum of the lengths."""
+
+
+def _sample_four_bar(rng: np.random.Generator) -> tuple[FourBar, float]:
+    d = rng.uniform(0.20, 0.40)
+    direction = math.radians(rng.uniform(-15.0, 15.0))
+    frame = (_mm(d * math.cos(direction)), _mm(d * math.sin(direction)))
+    crank = _mm(rng.uniform(0.15, 0.35) * d)
+    coupler = _mm(rng.uniform(0.70, 1.40) * d)
+    rocker = _mm(rng.uniform(0.50, 1.20) * d)
+    branch = int(rng.choice([1, -1]))
+    return FourBar(crank=crank, coupler=coupler, rocker=rocker, frame=frame, branch=branch), _speed(rng, 20, 120)
+
+
+def _check_four_bar(mechanism: FourBar) -> list[str]:
+    problems = []
+    grashof = grashof_class(*mechanism.lengths)
+    if grashof.name != "crank-rocker":
+        problems.append(f"it is a {grashof.name}, not a crank-rocker")
+    elif grashof.margin < FOUR_BAR_GRASHOF_MARGIN * sum(mechanism.lengths):
+        problems.append("it is too close to a change-point linkage (Grashof margin)")
+    else:
+        low, high = (math.degrees(mu) for mu in transmission_extremes(mechanism))
+        if low < FOUR_BAR_TRANSMISSION_DEG[0] or high > FOUR_BAR_TRANSMISSION_DEG[1]:
+            problems.append(f"its transmission angle ranges over [{low:.1f}°, {high:.1f}°], outside "
+                            f"[{FOUR_BAR_TRANSMISSION_DEG[0]:g}°, {FOUR_BAR_TRANSMISSION_DEG[1]:g}°]")
+    return problems
+
+
+def _data_four_bar(m: FourBar) -> list[tuple[str, str, str, str]]:
+    side = "left" if m.branch == 1 else "right"
+    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
+            ("L2", "coupler length |AB|", f"{m.coupler:.3f}", "m"),
+            ("L3", "rocker length |CB|", f"{m.rocker:.3f}", "m"),
+            ("(a, b)", "rocker pivot C", f"({m.frame[0]:.3f}, {m.frame[1]:.3f})", "m"),
+            ("", "assembly (branch)", f"{m.branch:+d}: B to the {side} of the line from A to C", "")]
+
+
+# --- slotted lever -------------------------------------------------------------------------------------
+
+SLOTTED_MIN_PIVOT_RATIO = 1.3
+"""The lever's pivot is at least this many crank radii from the crank's centre (oscillating lever)."""
+
+
+def _sample_slotted_lever(rng: np.random.Generator) -> tuple[SlottedLever, float]:
+    crank = _mm(rng.uniform(0.050, 0.150))
+    distance = rng.uniform(1.4, 2.5) * crank
+    direction = math.radians(rng.uniform(-110.0, -70.0))   # the pivot below the crank, as in a shaper
+    pivot = (_mm(distance * math.cos(direction)), _mm(distance * math.sin(direction)))
+    return SlottedLever(crank=crank, pivot=pivot), _speed(rng, 10, 60)
+
+
+def _check_slotted_lever(mechanism: SlottedLever) -> list[str]:
+    if mechanism.kind != "oscillating" or mechanism.pivot_distance < SLOTTED_MIN_PIVOT_RATIO * mechanism.crank:
+        return [f"the pivot is closer than {SLOTTED_MIN_PIVOT_RATIO:g} crank radii: the lever would swing too far "
+                "or rotate"]
+    return []
+
+
+def _data_slotted_lever(m: SlottedLever) -> list[tuple[str, str, str, str]]:
+    return [("r", "crank radius |OA| (the block is on the crank pin A)", f"{m.crank:.3f}", "m"),
+            ("(a, b)", "the lever's fixed pivot C", f"({m.pivot[0]:.3f}, {m.pivot[1]:.3f})", "m"),
+            ("K", "time ratio of the lever (for reference)",
+             f"{slotted_time_ratio(m.crank, m.pivot_distance):.3f}", "")]
+
+
+TASKS: dict[str, Task] = {
+    "crank-slider": Task(
+        "crank-slider", "Crank-slider", _sample_crank_slider, _check_crank_slider, _data_crank_slider,
+        (Quantity("B.s", "x_B", "position of the slider B on its guide (its x coordinate)", "m"),
+         Quantity("B.v", "v_B", "velocity of the slider (positive towards +x)", "m/s"),
+         Quantity("B.a", "a_B", "acceleration of the slider (positive towards +x)", "m/s²"),
+         Quantity("coupler.omega", "ψ_t", "angular velocity of the coupler (positive counter-clockwise)", "1/s"),
+         Quantity("coupler.alpha", "ψ_tt", "angular acceleration of the coupler (positive counter-clockwise)",
+                  "1/s²")),
+        f"the crank turns a full revolution (L2 > L1 + |e|) and the transmission angle, between the rod and the "
+        f"normal to the guide, never falls below {CRANK_SLIDER_MIN_TRANSMISSION_DEG:g}°; L1/L2 between 0.2 and 0.35"),
+    "four-bar": Task(
+        "four-bar", "Crank-rocker four-bar", _sample_four_bar, _check_four_bar, _data_four_bar,
+        (Quantity("coupler.angle_deg", "ψ", "coupler angle, of the vector A→B from +x, counter-clockwise", "°"),
+         Quantity("rocker.angle_deg", "ξ", "rocker angle, of the vector C→B from +x, counter-clockwise", "°"),
+         Quantity("coupler.omega", "ψ_t", "angular velocity of the coupler (positive counter-clockwise)", "1/s"),
+         Quantity("rocker.omega", "ξ_t", "angular velocity of the rocker (positive counter-clockwise)", "1/s"),
+         Quantity("coupler.alpha", "ψ_tt", "angular acceleration of the coupler", "1/s²"),
+         Quantity("rocker.alpha", "ξ_tt", "angular acceleration of the rocker", "1/s²")),
+        "Grashof's condition holds with the crank the shortest link (a crank-rocker), at least "
+        f"{100 * FOUR_BAR_GRASHOF_MARGIN:g} % of the sum of the lengths away from a change point, and the "
+        f"transmission angle stays between {FOUR_BAR_TRANSMISSION_DEG[0]:g}° and {FOUR_BAR_TRANSMISSION_DEG[1]:g}° "
+        "over the whole revolution"),
+    "slotted-lever": Task(
+        "slotted-lever", "Crank with an oscillating slotted lever", _sample_slotted_lever, _check_slotted_lever,
+        _data_slotted_lever,
+        (Quantity("lever.angle_deg", "ξ", "lever angle, of the vector C→A from +x, counter-clockwise", "°"),
+         Quantity("lever.omega", "ξ_t", "angular velocity of the lever (positive counter-clockwise)", "1/s"),
+         Quantity("lever.alpha", "ξ_tt", "angular acceleration of the lever", "1/s²"),
+         Quantity("A.s", "L_tek", "distance from the pivot C to the block A", "m"),
+         Quantity("A.v", "v_rel", "sliding velocity of the block along the lever (positive away from C)", "m/s"),
+         Quantity("A.a", "a_rel", "relative acceleration of the block along the lever (positive away from C)",
+                  "m/s²"),
+         Quantity("A.coriolis", "a_cor", "Coriolis acceleration 2 ξ_t v_rel (positive towards the lever's left)",
+                  "m/s²")),
+        f"the lever oscillates, its pivot at least {SLOTTED_MIN_PIVOT_RATIO:g} crank radii from the crank's centre"),
+}
+"""The mechanisms an assignment can be set on, by command-line name."""
+
+
+def quantity_values(solution: Solution, column: str) -> np.ndarray:
+    """The values of a key column (``NAME.KEY`` as in the ``table`` CSV) at the solution's positions.
+
+    Angles are in degrees, wrapped to [0, 360).
+    """
+    name, _, key = column.partition(".")
+    if name in solution.angle_names and key in ("angle_deg", "omega", "alpha"):
+        angle = solution.angle(name)
+        if key == "angle_deg":
+            return np.degrees(angle.value) % 360.0
+        return np.asarray(angle.omega if key == "omega" else angle.alpha, dtype=float)
+    if name in solution.slider_names:
+        slider = solution.slider(name)
+        if key in ("s", "v", "a"):
+            return np.asarray({"s": slider.value, "v": slider.velocity, "a": slider.acceleration}[key], dtype=float)
+        if key in solution.extras.get(name, {}):
+            return np.asarray(solution.extras[name][key], dtype=float)
+    if name in solution.point_names:
+        point = solution.point(name)
+        parts = {"x": point.value.real, "y": point.value.imag, "vx": point.velocity.real,
+                 "vy": point.velocity.imag, "ax": point.acceleration.real, "ay": point.acceleration.imag}
+        if key in parts:
+            return np.asarray(parts[key], dtype=float)
+    raise KeyError(f"no quantity {column!r} in this solution")
+
+
+def _positions(rng: np.random.Generator, count: int) -> tuple[float, ...]:
+    choices = rng.choice(360 // STEP_DEG, size=count, replace=False)
+    return tuple(float(STEP_DEG * c) for c in sorted(choices))
+
+
+def student_ids(count: int) -> list[str]:
+    """``s01`` … (zero-padded to the width of the count, at least two digits)."""
+    width = max(2, len(str(count)))
+    return [f"s{i:0{width}d}" for i in range(1, count + 1)]
+
+
+def make_variant(task: Task | str, seed: int, index: int, student: str | None = None, positions: int = 3,
+                 max_tries: int = 10_000) -> Variant:
+    """Variant number ``index`` (0-based) of ``seed``: drawn until the task's checks pass.
+
+    Raises
+    ------
+    InvalidParameterError
+        For an unknown mechanism or a bad number of positions.
+    MechanismError
+        If no valid variant was found in ``max_tries`` draws (the ranges do not suit the checks).
+    """
+    task = _task(task)
+    if not isinstance(positions, (int, np.integer)) or not 1 <= positions <= 360 // STEP_DEG:
+        raise InvalidParameterError("positions", positions, f"a whole number from 1 to {360 // STEP_DEG}")
+    # two independent streams: the positions do not depend on how many candidates were rejected
+    lengths, angles = (np.random.default_rng(s) for s in np.random.SeedSequence(seed, spawn_key=(index,)).spawn(2))
+    for _ in range(max_tries):
+        try:
+            mechanism, omega = task.sample(lengths)
+        except MechanismError:
+            continue
+        if not task.check(mechanism):
+            return Variant(student or f"s{index + 1:02d}", mechanism, omega, _positions(angles, positions))
+    raise MechanismError(f"no valid {task.name} variant in {max_tries} draws (seed {seed}, variant {index})")
+
+
+def make_variants(task: Task | str, students: int, seed: int, positions: int = 3) -> list[Variant]:
+    """One variant per student, ``s01`` … ``sNN``; variant *i* depends only on the seed and *i*."""
+    if not isinstance(students, (int, np.integer)) or students < 1:
+        raise InvalidParameterError("students", students, "a whole number ≥ 1")
+    return [make_variant(task, seed, i, student, positions) for i, student in enumerate(student_ids(students))]
+
+
+def _task(task: Task | str) -> Task:
+    if isinstance(task, Task):
+        return task
+    if task not in TASKS:
+        raise InvalidParameterError("mechanism", task, "one of " + ", ".join(TASKS))
+    return TASKS[task]
+
+
+def answer_key(task: Task | str, variants: Sequence[Variant]) -> list[dict]:
+    """Rows of the key: ``student``, ``position`` (1, 2 …), ``phi_deg`` and one value per quantity."""
+    task = _task(task)
+    rows = []
+    for variant in variants:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeadCentreWarning)   # a valid variant has no dead centre
+            solution = variant.solve()
+        values = {q.column: quantity_values(solution, q.column) for q in task.quantities}
+        for i, phi in enumerate(variant.positions_deg):
+            row = {"student": variant.student, "position": i + 1, "phi_deg": phi}
+            row.update({column: float(v[i]) for column, v in values.items()})
+            rows.append(row)
+    return rows
+
+
+def _write_csv(path: pathlib.Path, columns: Sequence[str], rows: Sequence[dict]) -> None:
+    with path.open("w", newline="", encoding="utf8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(columns), lineterminator="\n")
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (repr(v) if isinstance(v, float) and k not in KEY_COLUMNS else v)
+                             for k, v in row.items()})
+
+
+# --- sheets ---------------------------------------------------------------------------------------------
+
+def drawing_png(variant: Variant) -> bytes:
+    """The variant's mechanism drawn at its first position, as PNG bytes (no time stamp)."""
+    import matplotlib.pyplot as plt
+
+    from .. import plot
+
+    phi = math.radians(variant.positions_deg[0])
+    solution = variant.mechanism.solve(np.array([phi]), variant.omega, order=0)
+    fig, ax = plt.subplots(figsize=(5.0, 3.6))
+    plot.draw(variant.mechanism, solution, 0, ax=ax)
+    ax.set_title(f"{variant.student}: the mechanism at φ = {variant.positions_deg[0]:g}°", fontsize=10)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=110, bbox_inches="tight", metadata={"Software": None})
+    plt.close(fig)
+    return buffer.getvalue()
+
+
+def _sheet_parts(task: Task, variant: Variant) -> dict:
+    return {
+        "title": f"{task.title}: assignment {variant.student}",
+        "data": task.data(variant.mechanism) + [
+            ("φ_t = ω1", "crank angular velocity, constant, counter-clockwise", f"{variant.omega:g}", "1/s")],
+        "positions": ", ".join(f"{p:g}°" for p in variant.positions_deg),
+        "header": list(KEY_COLUMNS) + [q.column for q in task.quantities],
+    }
+
+
+INSTRUCTIONS = (
+    "Angles are measured counter-clockwise from the +x axis; the crank turns about O = (0, 0) at constant "
+    "speed, counter-clockwise. Give numbers with at least four significant figures, in the units asked for, "
+    "with a decimal point. Hand in the answer form (the CSV file {student}-answers.csv, or the lines below) "
+    "with every cell filled in; leave a cell empty only if you have no answer.")
+
+
+def _md(text: str) -> str:
+    """Text for a Markdown table cell (a ``|`` would end the cell)."""
+    return text.replace("|", "\\|")
+
+
+def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None) -> str:
+    """The sheet as Markdown; ``image`` is the drawing's file name (omitted if None)."""
+    task = _task(task)
+    parts = _sheet_parts(task, variant)
+    lines = [f"# {parts['title']}", "", "Name: ______________________   Group: ________", ""]
+    if image:
+        lines += [f"![The mechanism of {variant.student}]({image})", ""]
+    lines += ["## Data", "", "| symbol | meaning | value | unit |", "|---|---|---|---|"]
+    lines += ["| " + " | ".join(_md(c) for c in row) + " |" for row in parts["data"]]
+    lines += ["", "## Task", "", f"Find, at the crank angles φ = {parts['positions']}:", "",
+              "| column | symbol | quantity | unit |", "|---|---|---|---|"]
+    lines += [f"| `{q.column}` | {_md(q.symbol)} | {_md(q.meaning)} | {_md(q.unit)} |" for q in task.quantities]
+    lines += ["", INSTRUCTIONS.format(student=variant.student), "", "## Answers", "",
+              "| position | φ, ° | " + " | ".join(f"{q.symbol}, {q.unit}" for q in task.quantities) + " |",
+              "|---|---|" + "---|" * len(task.quantities)]
+    lines += [f"| {i + 1} | {p:g} | " + " | ".join(" " for _ in task.quantities) + " |"
+              for i, p in enumerate(variant.positions_deg)]
+    lines += ["", "The answer form, to be filled in:", "", "```", ",".join(parts["header"])]
+    lines += [f"{variant.student},{i + 1},{p:g}" + "," * len(task.quantities)
+              for i, p in enumerate(variant.positions_deg)]
+    lines += ["```", "", f"Every variant of this assignment is valid: {task.conditions}.", ""]
+    return "\n".join(lines)
+
+
+_CSS = """
+body { font-family: "DejaVu Sans", Arial, sans-serif; max-width: 46em; margin: 1.5em auto; color: #222; }
+h1 { font-size: 1.4em; margin-bottom: 0.2em; } h2 { font-size: 1.1em; margin-top: 1.2em; }
+table { border-collapse: collapse; margin: 0.5em 0; } td, th { border: 1px solid #999; padding: 0.25em 0.6em; }
+th { background: #eee; text-align: left; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
+table.answers { width: 100%; table-layout: fixed; } table.answers td { height: 1.8em; }
+table.answers th { font-size: 0.85em; overflow-wrap: anywhere; } code, pre { font-family: "DejaVu Sans Mono", monospace; }
+pre { background: #f5f5f5; padding: 0.5em; white-space: pre-wrap; overflow-wrap: anywhere; }
+.name { margin: 0.5em 0 1em; } img { max-width: 100%; }
+.small { font-size: 0.85em; color: #555; }
+@media print { body { margin: 0; max-width: none; } pre { background: none; border: 1px solid #999; }
+  @page { size: A4; margin: 15mm; } }
+"""
+
+
+def _numeric(text: str) -> str:
+    """The class attribute of a table cell: numbers (and pairs of numbers) align right."""
+    try:
+        [float(t) for t in text.strip("()").split(",")]
+    except ValueError:
+        return ""
+    return ' class="num"'
+
+
+def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None) -> str:
+    """The sheet as one self-contained HTML page (the drawing embedded as a base64 PNG)."""
+    task = _task(task)
+    parts = _sheet_parts(task, variant)
+    e = html.escape
+    png = drawing_png(variant) if png is None else png
+    out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
+           f"<title>{e(parts['title'])}</title>", f"<style>{_CSS}</style>", "</head>", "<body>",
+           f"<h1>{e(parts['title'])}</h1>",
+           '<p class="name">Name: ______________________ &nbsp; Group: ________</p>',
+           f'<img alt="The mechanism of {e(variant.student)}" src="data:image/png;base64,'
+           f'{base64.b64encode(png).decode("ascii")}">',
+           "<h2>Data</h2>", "<table><tr><th>symbol</th><th>meaning</th><th>value</th><th>unit</th></tr>"]
+    out += [f'<tr><td>{e(s)}</td><td>{e(m)}</td><td{_numeric(v)}>{e(v)}</td><td>{e(u)}</td></tr>'
+            for s, m, v, u in parts["data"]]
+    out += ["</table>", "<h2>Task</h2>", f"<p>Find, at the crank angles φ = {e(parts['positions'])}:</p>",
+            "<table><tr><th>column</th><th>symbol</th><th>quantity</th><th>unit</th></tr>"]
+    out += [f"<tr><td><code>{e(q.column)}</code></td><td>{e(q.symbol)}</td><td>{e(q.meaning)}</td>"
+            f"<td>{e(q.unit)}</td></tr>" for q in task.quantities]
+    out += ["</table>", f"<p>{e(INSTRUCTIONS.format(student=variant.student))}</p>", "<h2>Answers</h2>",
+            '<table class="answers"><tr><th>position</th><th>φ, °</th>'
+            + "".join(f"<th>{e(q.symbol)}, {e(q.unit)}</th>" for q in task.quantities) + "</tr>"]
+    out += [f'<tr><td class="num">{i + 1}</td><td class="num">{p:g}</td>' + "<td></td>" * len(task.quantities)
+            + "</tr>" for i, p in enumerate(variant.positions_deg)]
+    form = [",".join(parts["header"])] + [f"{variant.student},{i + 1},{p:g}" + "," * len(task.quantities)
+                                          for i, p in enumerate(variant.positions_deg)]
+    out += ["</table>", "<p>The answer form, to be filled in:</p>", f"<pre>{e(chr(10).join(form))}</pre>",
+            f'<p class="small">Every variant of this assignment is valid: {e(task.conditions)}.</p>',
+            "</body>", "</html>", ""]
+    return "\n".join(out)
+
+
+def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | pathlib.Path,
+                     seed: int | None = None) -> dict[str, list[pathlib.Path]]:
+    """Write the sheets, answer forms, the key and ``variants.json`` into ``out`` (created if missing).
+
+    Returns
+    -------
+    dict
+        ``{"sheets": [...], "forms": [...], "key": [path], "variants": [path]}``.
+    """
+    task = _task(task)
+    out = pathlib.Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    written: dict[str, list[pathlib.Path]] = {"sheets": [], "forms": [], "key": [], "variants": []}
+    columns = list(KEY_COLUMNS) + [q.column for q in task.quantities]
+    for variant in variants:
+        png = drawing_png(variant)
+        (out / f"{variant.student}.png").write_bytes(png)
+        for suffix, text in ((".html", sheet_html(task, variant, png)),
+                             (".md", sheet_markdown(task, variant, f"{variant.student}.png"))):
+            path = out / f"{variant.student}{suffix}"
+            path.write_text(text, encoding="utf8")
+            written["sheets"].append(path)
+        form = out / f"{variant.student}-answers.csv"
+        _write_csv(form, columns, [{"student": variant.student, "position": i + 1, "phi_deg": p}
+                                   for i, p in enumerate(variant.positions_deg)])
+        written["forms"].append(form)
+    key = out / "key.csv"
+    _write_csv(key, columns, answer_key(task, variants))
+    written["key"].append(key)
+    record = out / "variants.json"
+    record.write_text(json.dumps({"mechanism": task.name, "seed": seed,
+                                  "variants": [v.record() for v in variants]}, indent=1, ensure_ascii=False) + "\n",
+                      encoding="utf8")
+    written["variants"].append(record)
+    return written

@@ -1,0 +1,486 @@
+"""Layer 6: grading course assignments — the answer key against the students' answer files.
+
+``python -m mechanisms check KEY.csv ANSWERS.csv [MORE.csv …]`` reads the key written by
+``python -m mechanisms assign`` (:mod:`mechanisms.assign`) and one or more answer files with
+the same columns (``student``, ``position``, optionally ``phi_deg``, then the quantities), and
+reports per student and per quantity what is right, what is wrong and by how much, and which
+answers are missing or unreadable.
+
+Tolerances
+----------
+An answer is right when ``|answer − key| ≤ max(r·|key|, floor)``: ``r`` is 1 % unless the teacher
+sets another, and the floor depends on the kind of quantity (:data:`TOLERANCES`), so that a value
+close to zero (a slider near a dead centre) is not asked for to 1 % of almost nothing. Angles
+(``*.angle_deg``) are compared modulo 360° against an absolute tolerance only.
+
+Problems with a file are of two sorts. A file that cannot be graded at all (missing, not CSV,
+without the ``student`` or ``position`` column, with a column that the key does not have, or a
+key with a bad number) raises :class:`GradingError` with a message that says what to fix. A
+problem in a row or a cell (an unknown student id or position, a repeated row, a ``φ`` that is
+not the key's, a cell that is not a number) is reported and the rest is graded; so is an answer
+file that cannot be read when other answer files can.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import pathlib
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+from ..core.errors import MechanismError
+
+__all__ = [
+    "Tolerance",
+    "TOLERANCES",
+    "DEFAULT_RELATIVE",
+    "GradingError",
+    "Key",
+    "Answers",
+    "Mark",
+    "Report",
+    "kind_of",
+    "tolerance",
+    "difference",
+    "parse_number",
+    "read_key",
+    "read_answers",
+    "grade",
+    "check_files",
+]
+
+DEFAULT_RELATIVE = 0.01
+"""Relative tolerance r of every quantity but angles: 1 % of the key's value."""
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """The tolerance of one kind of quantity.
+
+    Attributes
+    ----------
+    kind : str
+        ``angle``, ``length``, ``velocity`` …
+    floor : float
+        Absolute tolerance (in ``unit``) below which the relative one never goes.
+    unit : str
+    relative : bool
+        False for angles, which are compared against the floor only.
+    """
+
+    kind: str
+    floor: float
+    unit: str
+    relative: bool = True
+
+
+TOLERANCES: dict[str, Tolerance] = {
+    "angle": Tolerance("angle", 0.1, "°", relative=False),
+    "length": Tolerance("length", 1e-4, "m"),
+    "velocity": Tolerance("velocity", 5e-3, "m/s"),
+    "acceleration": Tolerance("acceleration", 0.05, "m/s²"),
+    "angular velocity": Tolerance("angular velocity", 0.01, "1/s"),
+    "angular acceleration": Tolerance("angular acceleration", 0.5, "1/s²"),
+}
+"""Tolerances by kind of quantity (see the module's notes)."""
+
+_SUFFIX_KINDS = {
+    "angle_deg": "angle", "omega": "angular velocity", "alpha": "angular acceleration",
+    "s": "length", "x": "length", "y": "length",
+    "v": "velocity", "vx": "velocity", "vy": "velocity",
+    "a": "acceleration", "ax": "acceleration", "ay": "acceleration", "coriolis": "acceleration",
+}
+ID_COLUMNS = ("student", "position")
+PHI = "phi_deg"
+PHI_TOLERANCE = 1e-6
+"""How far (degrees) an answer file's φ may be from the key's and still name the same position."""
+
+
+class GradingError(MechanismError):
+    """A key or an answer file that cannot be graded; the message says what to fix."""
+
+
+def kind_of(column: str) -> str:
+    """The kind of a quantity from its column name ``NAME.KEY`` (as in the ``table`` CSV).
+
+    Raises
+    ------
+    GradingError
+        If the name has no known ``KEY``.
+    """
+    _, dot, key = column.partition(".")
+    if not dot or key not in _SUFFIX_KINDS:
+        raise GradingError(f"{column!r} is not a quantity column: expected NAME.KEY with KEY one of "
+                           + ", ".join(_SUFFIX_KINDS))
+    return _SUFFIX_KINDS[key]
+
+
+def tolerance(column: str, key_value: float, relative: float = DEFAULT_RELATIVE) -> float:
+    """The largest accepted |answer − key| for a key value of a column (in the column's unit)."""
+    rule = TOLERANCES[kind_of(column)]
+    return max(relative * abs(key_value), rule.floor) if rule.relative else rule.floor
+
+
+def _wrap_degrees(angle: float) -> float:
+    """An angle difference (degrees) wrapped to [−180°, 180°)."""
+    return (angle + 180.0) % 360.0 - 180.0
+
+
+def difference(column: str, answer: float, key_value: float) -> float:
+    """answer − key; for angles the difference wrapped to [−180°, 180°)."""
+    diff = answer - key_value
+    return _wrap_degrees(diff) if kind_of(column) == "angle" else diff
+
+
+def parse_number(text: str, decimal_comma: bool = False) -> float:
+    """A cell's number; ``ValueError`` with a reason a student understands if it is not one."""
+    cleaned = text.strip()
+    if decimal_comma:
+        cleaned = cleaned.replace(",", ".")
+    try:
+        value = float(cleaned)
+    except ValueError:
+        hint = " (use a decimal point)" if "," in cleaned and not decimal_comma else ""
+        raise ValueError(f"{text.strip()!r} is not a number{hint}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{text.strip()!r} is not a finite number")
+    return value
+
+
+# --- reading ---------------------------------------------------------------------------------------------
+
+def _read_table(path: pathlib.Path, what: str) -> tuple[list[str], list[tuple[int, dict[str, str], bool]], bool]:
+    """Header, (line number, row, too many cells) triples and whether the file uses ``;`` with decimal commas."""
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except FileNotFoundError:
+        raise GradingError(f"{what} {path}: no such file") from None
+    except UnicodeDecodeError:
+        raise GradingError(f"{what} {path}: not a text file in UTF-8 (save it as CSV, UTF-8)") from None
+    except OSError as error:
+        raise GradingError(f"{what} {path}: cannot be read ({error.strerror})") from None
+    lines = text.splitlines()
+    if not lines or not lines[0].strip():
+        raise GradingError(f"{what} {path}: empty (the first line must name the columns)")
+    semicolon = ";" in lines[0] and "," not in lines[0]
+    reader = csv.reader(io.StringIO(text), delimiter=";" if semicolon else ",")
+    try:
+        header = [h.strip() for h in next(reader)]
+        body = []
+        for row in reader:
+            if not any(cell.strip() for cell in row):
+                continue
+            body.append((reader.line_num, row))
+    except csv.Error as error:
+        raise GradingError(f"{what} {path}: not a readable CSV file ({error})") from None
+    if len(set(header)) != len(header):
+        repeated = sorted({h for h in header if header.count(h) > 1})
+        raise GradingError(f"{what} {path}: the column(s) {', '.join(repeated)} appear more than once")
+    rows = []
+    for line, row in body:
+        overflow = len(row) > len(header) and any(cell.strip() for cell in row[len(header):])
+        rows.append((line, {h: (row[i] if i < len(row) else "") for i, h in enumerate(header)}, overflow))
+    return header, rows, semicolon
+
+
+def _overflow(line: int, cells: int, columns: int) -> str:
+    return (f"line {line}: more cells than the {columns} columns (a decimal comma in a comma-separated file? "
+            "use a decimal point)")
+
+
+@dataclass
+class Key:
+    """The answer key: per (student, position) the crank angle and the value of each quantity."""
+
+    path: pathlib.Path
+    quantities: list[str]
+    phi: dict[tuple[str, int], float]
+    values: dict[tuple[str, int], dict[str, float]]
+
+    @property
+    def students(self) -> list[str]:
+        """Student ids in the key's order."""
+        return list(dict.fromkeys(student for student, _ in self.values))
+
+    def positions(self, student: str) -> list[int]:
+        return [p for s, p in self.values if s == student]
+
+
+def _position(text: str) -> int:
+    value = text.strip()
+    if not value.isdigit() or int(value) < 1:
+        raise ValueError(f"position {text.strip()!r} is not a whole number ≥ 1")
+    return int(value)
+
+
+def read_key(path: str | pathlib.Path) -> Key:
+    """Read and check an answer key (``student,position,phi_deg,QUANTITY…``)."""
+    path = pathlib.Path(path)
+    header, rows, comma = _read_table(path, "key")
+    if header[:3] != [*ID_COLUMNS, PHI] or len(header) < 4:
+        raise GradingError(f"key {path}: the columns must be student,position,phi_deg and then the quantities; "
+                           f"got {','.join(header)}")
+    quantities = header[3:]
+    for column in quantities:
+        kind_of(column)   # raises GradingError for a column that is not a quantity
+    phi, values = {}, {}
+    for line, row, overflow in rows:
+        where = f"key {path}, line {line}"
+        if overflow:
+            raise GradingError(f"key {path}, " + _overflow(line, len(row), len(header)))
+        student = row["student"].strip()
+        if not student:
+            raise GradingError(f"{where}: no student id")
+        numbers = {}
+        for column in (*ID_COLUMNS[1:], PHI, *quantities):
+            try:
+                if not row[column].strip():
+                    raise ValueError("empty (a key has every value)")
+                numbers[column] = _position(row[column]) if column == "position" else parse_number(row[column], comma)
+            except ValueError as error:
+                raise GradingError(f"{where}, column {column}: {error}") from None
+        position, angle = numbers.pop("position"), numbers.pop(PHI)
+        if (student, position) in values:
+            raise GradingError(f"{where}: student {student} position {position} appears twice")
+        phi[student, position] = angle
+        values[student, position] = numbers
+    if not values:
+        raise GradingError(f"key {path}: no rows")
+    return Key(path, quantities, phi, values)
+
+
+@dataclass
+class Answers:
+    """The cells of one or more answer files by (student, position), and the problems found."""
+
+    cells: dict[tuple[str, int], dict[str, str]] = field(default_factory=dict)
+    decimal_comma: dict[tuple[str, int], bool] = field(default_factory=dict)
+    problems: list[str] = field(default_factory=list)
+
+
+def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None) -> Answers:
+    """Read an answer file against the key; row problems go to ``Answers.problems``.
+
+    Raises
+    ------
+    GradingError
+        If the file cannot be read or its columns are not the key's (``student``, ``position``,
+        optionally ``phi_deg``, and quantities of the key, in any order).
+    """
+    path = pathlib.Path(path)
+    answers = into if into is not None else Answers()
+    header, rows, comma = _read_table(path, "answer file")
+    missing = [c for c in ID_COLUMNS if c not in header]
+    unknown = [c for c in header if c not in (*ID_COLUMNS, PHI, *key.quantities)]
+    if missing or unknown:
+        parts = []
+        if missing:
+            parts.append("no column " + " or ".join(repr(c) for c in missing))
+        if unknown:
+            parts.append("column(s) not in the key: " + ", ".join(repr(c) for c in unknown))
+        raise GradingError(f"answer file {path}: " + "; ".join(parts) + ". The columns must be "
+                           f"{','.join([*ID_COLUMNS, PHI, *key.quantities])} (phi_deg may be left out)")
+    students = key.students
+    by_id = {s.casefold(): s for s in students}       # "S01" is s01
+    for line, row, overflow in rows:
+        where = f"{path.name}, line {line}"
+        if overflow:
+            answers.problems.append(f"{path.name}, " + _overflow(line, len(row), len(header)) + "; row ignored")
+            continue
+        student = by_id.get(row["student"].strip().casefold(), row["student"].strip())
+        if student not in students:
+            known = f"{students[0]} … {students[-1]}" if len(students) > 2 else ", ".join(students)
+            answers.problems.append(f"{where}: unknown student id {student!r} (the key has {known}); row ignored")
+            continue
+        try:
+            position = _position(row["position"])
+        except ValueError as error:
+            answers.problems.append(f"{where}: {error}; row ignored")
+            continue
+        if (student, position) not in key.values:
+            answers.problems.append(f"{where}: student {student} has no position {position} (the key has "
+                                    f"{', '.join(map(str, key.positions(student)))}); row ignored")
+            continue
+        if PHI in row and row[PHI].strip():
+            try:
+                angle = parse_number(row[PHI], comma)
+            except ValueError as error:
+                answers.problems.append(f"{where}: φ: {error}; row ignored")
+                continue
+            expected = key.phi[student, position]
+            if abs(_wrap_degrees(angle - expected)) > PHI_TOLERANCE:
+                answers.problems.append(f"{where}: φ = {angle:g}° but position {position} of {student} is at "
+                                        f"φ = {expected:g}°; row ignored")
+                continue
+        if (student, position) in answers.cells:
+            answers.problems.append(f"{where}: a second row for {student} position {position}; the first one "
+                                    "is graded, this one ignored")
+            continue
+        answers.cells[student, position] = {c: row[c] for c in key.quantities if c in row}
+        answers.decimal_comma[student, position] = comma
+    return answers
+
+
+# --- grading ---------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Mark:
+    """The grade of one answer.
+
+    ``status`` is ``right``, ``wrong``, ``missing`` (no row or an empty cell) or ``unreadable``
+    (``note`` says why; for a wrong answer it may give a hint, "right but for the sign");
+    ``difference`` is answer − key (wrapped for angles) and ``tolerance`` the accepted
+    |difference|, both in the quantity's unit.
+    """
+
+    student: str
+    position: int
+    phi_deg: float
+    quantity: str
+    key: float
+    answer: float | None
+    status: str
+    difference: float | None
+    tolerance: float
+    note: str = ""
+
+    @property
+    def right(self) -> bool:
+        return self.status == "right"
+
+
+@dataclass
+class Report:
+    """All marks and the problems found in the answer files."""
+
+    key: Key
+    marks: list[Mark]
+    problems: list[str]
+    relative: float
+
+    def of(self, student: str) -> list[Mark]:
+        return [m for m in self.marks if m.student == student]
+
+    def score(self, student: str | None = None) -> tuple[int, int]:
+        """(right, asked) for a student, or for the class."""
+        marks = self.marks if student is None else self.of(student)
+        return sum(m.right for m in marks), len(marks)
+
+    def text(self) -> str:
+        """The report for a person: per student, per quantity, and the file problems."""
+        unit = {q: TOLERANCES[kind_of(q)].unit for q in self.key.quantities}
+        rules = ", ".join(f"{t.kind} {t.floor:g} {t.unit}" for t in TOLERANCES.values())
+        lines = [f"Key {self.key.path.name}: {len(self.key.students)} students, {len(self.key.values)} positions, "
+                 f"{len(self.key.quantities)} quantities ({len(self.marks)} answers).",
+                 f"Right when |answer − key| ≤ max({100 * self.relative:g} % of |key|, floor); floors: {rules}; "
+                 "angles modulo 360° within their floor.", ""]
+        for student in self.key.students:
+            marks = self.of(student)
+            right, asked = self.score(student)
+            if all(m.status == "missing" for m in marks):
+                lines.append(f"{student}: no answers ({right} of {asked} right)")
+                continue
+            lines.append(f"{student}: {right} of {asked} right ({100 * right / asked:.0f} %)")
+            absent = {p for p in dict.fromkeys(m.position for m in marks)
+                      if all(m.status == "missing" for m in marks if m.position == p)}
+            for m in marks:
+                where = f"position {m.position} (φ = {m.phi_deg:g}°) {m.quantity}"
+                if m.position in absent:
+                    if m.quantity == self.key.quantities[0]:
+                        lines.append(f"  missing    position {m.position} (φ = {m.phi_deg:g}°): all "
+                                     f"{len(self.key.quantities)} answers")
+                elif m.status == "wrong":
+                    relative = ""
+                    if m.key and TOLERANCES[kind_of(m.quantity)].relative:
+                        relative = f", {100 * m.difference / abs(m.key):+.3g} %"
+                    note = f"; {m.note}" if m.note else ""
+                    lines.append(f"  wrong      {where}: answer {m.answer:.6g}, key {m.key:.6g} {unit[m.quantity]}, "
+                                 f"off by {m.difference:+.4g}{relative} (tolerance {m.tolerance:.2g}){note}")
+                elif m.status == "missing":
+                    lines.append(f"  missing    {where}")
+                elif m.status == "unreadable":
+                    lines.append(f"  unreadable {where}: {m.note}")
+        lines += ["", "Per quantity (right of asked):"]
+        width = max(len(q) for q in self.key.quantities)
+        for q in self.key.quantities:
+            marks = [m for m in self.marks if m.quantity == q]
+            counts = {s: sum(m.status == s for m in marks) for s in ("right", "wrong", "missing", "unreadable")}
+            extra = ", ".join(f"{n} {s}" for s, n in counts.items() if s != "right" and n)
+            lines.append(f"  {q.ljust(width)}  {counts['right']} of {len(marks)}" + (f" ({extra})" if extra else ""))
+        if self.problems:
+            lines += ["", "Problems in the answer files:"] + [f"  {p}" for p in self.problems]
+        right, asked = self.score()
+        lines += ["", f"Class: {right} of {asked} answers right ({100 * right / asked:.0f} %)."]
+        return "\n".join(lines)
+
+    def csv(self) -> str:
+        """Every mark as CSV: student, position, phi_deg, quantity, key, answer, difference, tolerance, status, note."""
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(["student", "position", "phi_deg", "quantity", "key", "answer", "difference", "tolerance",
+                         "status", "note"])
+        for m in self.marks:
+            writer.writerow([m.student, m.position, m.phi_deg, m.quantity, repr(m.key),
+                             "" if m.answer is None else repr(m.answer),
+                             "" if m.difference is None else repr(m.difference), repr(m.tolerance), m.status, m.note])
+        return out.getvalue()
+
+
+def grade(key: Key, answers: Answers, relative: float = DEFAULT_RELATIVE) -> Report:
+    """Grade every answer the key asks for."""
+    if not (math.isfinite(relative) and 0.0 <= relative < 1.0):
+        raise GradingError(f"the relative tolerance must be in [0, 1): got {relative!r}")
+    marks = []
+    for (student, position), expected in key.values.items():
+        cells = answers.cells.get((student, position), {})
+        comma = answers.decimal_comma.get((student, position), False)
+        phi = key.phi[student, position]
+        for quantity in key.quantities:
+            value = expected[quantity]
+            tol = tolerance(quantity, value, relative)
+            text = cells.get(quantity, "").strip()
+            if not text:
+                marks.append(Mark(student, position, phi, quantity, value, None, "missing", None, tol))
+                continue
+            try:
+                answer = parse_number(text, comma)
+            except ValueError as error:
+                marks.append(Mark(student, position, phi, quantity, value, None, "unreadable", None, tol, str(error)))
+                continue
+            diff = difference(quantity, answer, value)
+            status = "right" if abs(diff) <= tol else "wrong"
+            note = ""
+            if status == "wrong" and kind_of(quantity) != "angle" and abs(answer + value) <= tol:
+                note = "right but for the sign"
+            marks.append(Mark(student, position, phi, quantity, value, answer, status, diff, tol, note))
+    return Report(key, marks, list(answers.problems), relative)
+
+
+def check_files(key_path: str | pathlib.Path, answer_paths: Sequence[str | pathlib.Path] | Iterable,
+                relative: float = DEFAULT_RELATIVE) -> Report:
+    """Read the key and the answer files and grade them.
+
+    An answer file that cannot be read is reported among the problems (its answers count as
+    missing) and the other files are graded.
+
+    Raises
+    ------
+    GradingError
+        If the key cannot be read, or none of the answer files.
+    """
+    key = read_key(key_path)
+    answers = Answers()
+    failures = []
+    paths = list(answer_paths)
+    for path in paths:
+        try:
+            read_answers(path, key, into=answers)
+        except GradingError as error:
+            failures.append(str(error))
+            answers.problems.append(f"not graded: {error}")
+    if failures and len(failures) == len(paths):
+        raise GradingError(failures[0] if len(failures) == 1 else
+                           "no answer file could be read:\n  " + "\n  ".join(failures))
+    return grade(key, answers, relative)

@@ -1,0 +1,263 @@
+"""Layer 3 foundation: what every mechanism class shares.
+
+A mechanism is a small declarative class: it names its joints and links as the book does,
+composes the building blocks of layer 2 in :meth:`Mechanism._solve`, describes its drawing
+(:meth:`Mechanism.scheme`), its preserved joint distances and its constraint equations (for
+the generic solver of :mod:`mechanisms.verify`), and the parameters of its command-line table.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from typing import ClassVar, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..blocks.crank import crank_angle
+from ..core.errors import DeadCentreWarning, describe_angles
+from ..core.validate import require_finite, require_order
+from ..core.motion import AngleMotion, Motion, PointMotion, point_on_link
+
+__all__ = [
+    "Solution",
+    "Mechanism",
+    "Parameter",
+    "Bar",
+    "Ground",
+    "Block",
+    "Guide",
+    "registry",
+]
+
+
+class Solution:
+    """The kinematics of a mechanism over an array of crank positions.
+
+    Angles, points and sliders are looked up by the names the book uses:
+    ``sol.angle("coupler").omega``, ``sol.point("B").velocity``, ``sol.slider("B").value``.
+
+    Attributes
+    ----------
+    phi : ndarray
+        Crank angles φ (rad).
+    order : int
+        0, 1 or 2: positions, up to velocities, up to accelerations.
+    singular : ndarray of bool
+        True where a velocity or acceleration is unbounded (a dead centre); those values
+        are ``inf`` or ``nan`` on purpose and a :class:`DeadCentreWarning` was issued.
+    """
+
+    def __init__(self, phi: np.ndarray, order: int, *, angles: dict[str, AngleMotion],
+                 points: dict[str, PointMotion], links: dict[str, str],
+                 sliders: dict[str, Motion] | None = None,
+                 extras: dict[str, dict[str, np.ndarray]] | None = None,
+                 singular: np.ndarray | None = None):
+        self.phi = phi
+        self.order = order
+        self._angles = angles
+        self._points = points
+        self._links = links
+        self._sliders = sliders or {}
+        self.extras = extras or {}
+        self.singular = np.zeros(np.shape(phi), dtype=bool) if singular is None else singular
+
+    def __len__(self) -> int:
+        return int(np.size(self.phi))
+
+    @property
+    def angle_names(self) -> list[str]:
+        """Names of the links whose angles are known (``crank``, ``coupler`` …)."""
+        return list(self._angles)
+
+    @property
+    def point_names(self) -> list[str]:
+        """Names of the joints (``O``, ``A``, ``B`` …)."""
+        return list(self._points)
+
+    @property
+    def slider_names(self) -> list[str]:
+        """Names of the sliding pairs."""
+        return list(self._sliders)
+
+    @staticmethod
+    def _lookup(table: dict, name: str, what: str):
+        try:
+            return table[name]
+        except KeyError:
+            raise KeyError(f"no {what} named {name!r}; known: {', '.join(table)}") from None
+
+    def angle(self, link: str) -> AngleMotion:
+        """The angle of a link (rad) with ω (rad/s) and α (rad/s²)."""
+        return self._lookup(self._angles, link, "link")
+
+    def point(self, name: str) -> PointMotion:
+        """A named joint ``x + iy`` (m) with its velocity and acceleration."""
+        return self._lookup(self._points, name, "point")
+
+    def slider(self, name: str) -> Motion:
+        """A sliding pair: position along its guide (m), its velocity and acceleration."""
+        return self._lookup(self._sliders, name, "slider")
+
+    def point_on(self, link: str, along: float, left: float = 0.0) -> PointMotion:
+        """A point fixed to a link, computed now (on demand).
+
+        Parameters
+        ----------
+        link : str
+            The link's name (``"coupler"`` …).
+        along : float
+            Distance u (m) from the link's first joint along the link.
+        left : float
+            Distance v (m) to the left of the link (counter-clockwise side).
+        """
+        first_joint = self._lookup(self._links, link, "link")
+        along, left = require_finite("along", along), require_finite("left", left)
+        return point_on_link(self.point(first_joint), self.angle(link), along, left)
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A parameter of a mechanism as the command line asks for it.
+
+    ``kind`` is ``"length"`` (a finite length > 0, m), ``"number"`` (finite), ``"angle"``
+    (degrees on the command line, radians for the class), ``"pair"`` (two numbers ``A,B``, m)
+    or ``"branch"`` (+1 or -1).
+    """
+
+    name: str
+    kind: str
+    help: str
+    default: object = None
+
+
+# Drawing primitives: a mechanism describes what to draw, layer 6 draws it.
+@dataclass(frozen=True)
+class Bar:
+    """A link drawn as a bar through joints, in the colour of its role."""
+
+    link: str
+    joints: tuple[str, ...]
+    role: str
+
+
+@dataclass(frozen=True)
+class Ground:
+    """A pivot fixed to the frame, drawn with hatching."""
+
+    joint: str
+
+
+@dataclass(frozen=True)
+class Block:
+    """A sliding block at a joint, turned to a link's angle (by name) or a fixed angle (rad)."""
+
+    joint: str
+    angle: str | float = 0.0
+
+
+@dataclass(frozen=True)
+class Guide:
+    """A fixed straight guide through ``through`` (m) at ``angle`` (rad), drawn hatched."""
+
+    through: complex
+    angle: float = 0.0
+
+
+registry: dict[str, type["Mechanism"]] = {}
+
+
+class Mechanism(ABC):
+    """Base class of the book's mechanisms.
+
+    Subclasses set ``cli_name`` and ``cli_parameters`` (which registers them for the
+    command-line table), ``links`` (link name → first joint) and implement ``_solve``,
+    ``scheme``, ``preserved_distances``, ``coordinates`` and ``constraints``.
+    """
+
+    cli_name: ClassVar[str | None] = None
+    cli_parameters: ClassVar[tuple[Parameter, ...]] = ()
+    links: ClassVar[dict[str, str]] = {}
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if cls.cli_name:
+            registry[cls.cli_name] = cls
+
+    def solve(self, phi: ArrayLike, omega: float = 1.0, alpha: float = 0.0, order: int = 2) -> Solution:
+        """Kinematics over an array of crank angles.
+
+        Parameters
+        ----------
+        phi : array_like
+            Crank angles φ (rad).
+        omega : float or array_like
+            Crank angular velocity φ_t (rad/s).
+        alpha : float or array_like
+            Crank angular acceleration φ_tt (rad/s²).
+        order : int
+            0 positions only, 1 up to velocities, 2 up to accelerations.
+
+        Returns
+        -------
+        Solution
+        """
+        order = require_order(order)
+        solution = self._solve(crank_angle(phi, omega, alpha, order), order)
+        if order and solution.singular.any():
+            warnings.warn(
+                f"{type(self).__name__}: velocities/accelerations are unbounded (dead centre) at crank "
+                f"angle(s) {describe_angles(solution.phi[solution.singular])}; see Solution.singular",
+                DeadCentreWarning, stacklevel=2)
+        return solution
+
+    @abstractmethod
+    def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        """Compose the building blocks for the given crank motion."""
+
+    @abstractmethod
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
+        """What to draw: bars, frame pivots, blocks and guides."""
+
+    @abstractmethod
+    def preserved_distances(self) -> dict[tuple[str, str], float]:
+        """Pairs of joints on one rigid link and the distance between them (m)."""
+
+    # The generic solver's view: unknown coordinates q and constraint equations Φ(q, φ) = 0.
+    @abstractmethod
+    def coordinates(self, solution: Solution) -> list[Motion]:
+        """The unknowns q (angles, slider positions) taken from a solution, in constraint order."""
+
+    @abstractmethod
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
+        """Residuals of the constraint equations Φ(q, φ); zero when assembled.
+
+        Written with numpy operations only (``+ - * /``, ``np.sin``, ``np.cos``, ``np.sqrt``),
+        so that :mod:`mechanisms.verify` can differentiate them exactly.
+        """
+
+    def parameters(self) -> dict[str, object]:
+        """The mechanism's parameters by their command-line names."""
+        return {p.name: getattr(self, p.name) for p in self.cli_parameters}
+
+    def describe(self) -> str:
+        """One line naming the mechanism and its parameters with units."""
+        parts = []
+        for p in self.cli_parameters:
+            value = getattr(self, p.name)
+            if p.kind == "branch":
+                parts.append(f"{p.name} = {value:+d}")
+            elif p.kind == "pair":
+                parts.append(f"{p.name} = ({value[0]:g}, {value[1]:g}) m")
+            elif p.kind == "angle":
+                parts.append(f"{p.name} = {math.degrees(value):g}°")
+            else:
+                parts.append(f"{p.name} = {value:g} m" if p.kind == "length" else f"{p.name} = {value:g}")
+        return f"{self.cli_name or type(self).__name__}: " + ", ".join(parts)
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self.parameters().items())
+        return f"{type(self).__name__}({args})"

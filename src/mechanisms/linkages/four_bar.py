@@ -1,0 +1,368 @@
+"""Layer 3: the hinged four-bar (crank-rocker and its family), chapter 4.
+
+Joints: crank pivot O at the origin, crank pin A, coupler-rocker joint B, rocker pivot C at
+(a, b). Links: crank O → A (L1, angle φ), coupler A → B (L2, angle ψ), rocker C → B (L3,
+angle ξ). The loop-closure equations of the lecture (Alyushin, 2008) are
+
+    L1 cos φ + L2 cos ψ − L3 cos ξ = a,
+    L1 sin φ + L2 sin ψ − L3 sin ξ = b.
+
+Besides the mechanism class, the module holds the lecture's own formulas — the half-angle
+solution for ψ and the angular velocities and accelerations by Cramer's rule — so that the
+book can set them next to the stable form the class uses, and the analytic range of crank
+angles in which a linkage assembles.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .chunks import solve_in_blocks
+from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
+from ..blocks.circle_circle import hinge
+from ..blocks.crank import crank_pin
+from ..core.errors import AssemblyError, InvalidParameterError, describe_range
+from ..core.validate import require_branch, require_finite, require_length
+from ..core.motion import AngleMotion, Motion, fixed_point
+
+__all__ = [
+    "FourBar",
+    "CHANGE_POINT_TOLERANCE",
+    "half_angle_coupler_angle",
+    "stable_coupler_angle",
+    "cramer_rates",
+    "assembly_intervals",
+    "change_point_angles",
+]
+
+CHANGE_POINT_TOLERANCE = 1e-9
+"""Relative tolerance of the length equalities that make a linkage a change-point linkage."""
+
+
+# --- the lecture's formulas -------------------------------------------------------------------
+
+def _pqf(phi, crank: float, coupler: float, rocker: float, frame: tuple[float, float]):
+    """The lecture's P = a − L1 cos φ, Q = b − L1 sin φ and F = (P² + Q² + L2² − L3²)/(2 L2)."""
+    phi = np.asarray(phi, dtype=float)
+    p = frame[0] - crank * np.cos(phi)
+    q = frame[1] - crank * np.sin(phi)
+    f = (p**2 + q**2 + coupler**2 - rocker**2) / (2.0 * coupler)
+    return p, q, f
+
+
+def half_angle_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
+                             branch: int = 1) -> np.ndarray:
+    """The coupler angle ψ by the lecture's half-angle formula, as printed (for comparison).
+
+    Parameters
+    ----------
+    phi : array_like
+        Crank angles φ (rad).
+    crank, coupler, rocker : float
+        L1, L2, L3 (m).
+    frame : (float, float)
+        The rocker pivot (a, b) (m).
+    branch : int
+        +1 takes the + sign before the root, −1 the − sign; it is the same geometric branch
+        as :class:`FourBar`'s (B to the left of A → C for +1).
+
+    Returns
+    -------
+    ndarray
+        ``ψ = 2 arctan[(Q ± √(Q² + P² − F²))/(P + F)]`` (rad), in (−π, π). Where P + F = 0 the
+        formula divides by zero; close to it the − root loses accuracy (cancellation), see
+        chapter 4.
+
+    Notes
+    -----
+    From ``P cos ψ + Q sin ψ = F`` with ``t = tan(ψ/2)``: ``(P + F)t² − 2Qt + (F − P) = 0``.
+    """
+    p, q, f = _pqf(phi, crank, coupler, rocker, frame)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (q + branch * np.sqrt(q**2 + p**2 - f**2)) / (p + f)
+    return 2.0 * np.arctan(t)
+
+
+def stable_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
+                         branch: int = 1) -> np.ndarray:
+    """The coupler angle ψ in stable form: ``ψ = atan2(Q, P) + branch·atan2(√(R² − F²), F)``.
+
+    ``R = hypot(P, Q) = |AC|``; ``R² − F²`` is computed as a product of the differences of the
+    lengths (Heron), so that no cancellation occurs near the limits of assembly. Result in
+    (−π, π].
+    """
+    p, q, _ = _pqf(phi, crank, coupler, rocker, frame)
+    r = np.hypot(p, q)
+    total, difference = coupler + rocker, abs(coupler - rocker)
+    with np.errstate(invalid="ignore"):
+        # R² − F² = ((L2+L3)² − R²)(R² − (L2−L3)²)/(4 L2²)
+        height = np.sqrt((total + r) * (total - r) * (r - difference) * (r + difference)) / (2.0 * coupler)
+    foot = (r**2 + (coupler - rocker) * (coupler + rocker)) / (2.0 * coupler)   # = F
+    psi = np.arctan2(q, p) + branch * np.arctan2(height, foot)
+    return np.angle(np.exp(1j * psi))
+
+
+def cramer_rates(phi: ArrayLike, psi: ArrayLike, xi: ArrayLike, crank: float, coupler: float, rocker: float,
+                 omega: ArrayLike, alpha: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Angular velocities and accelerations of coupler and rocker by Cramer's rule (lecture).
+
+    Parameters
+    ----------
+    phi, psi, xi : array_like
+        Crank, coupler and rocker angles (rad) at the positions.
+    crank, coupler, rocker : float
+        L1, L2, L3 (m).
+    omega, alpha : float or array_like
+        φ_t (rad/s) and φ_tt (rad/s²).
+
+    Returns
+    -------
+    (psi_t, xi_t, psi_tt, xi_tt) : tuple of ndarray
+        rad/s and rad/s².
+
+    Notes
+    -----
+    With Δ = L2 L3 sin(ψ − ξ) (corrected forms, see the errata):
+    ``ψ_t = −φ_t L1 sin(φ − ξ)/(L2 sin(ψ − ξ))``, ``ξ_t = φ_t L1 sin(ψ − φ)/(L3 sin(ψ − ξ))``,
+    ``ψ_tt = (f1 cos ξ + f2 sin ξ)/(L2 sin(ξ − ψ))``, ``ξ_tt = (f1 cos ψ + f2 sin ψ)/(L3 sin(ξ − ψ))``
+    with ``f1 = φ_tt L1 sin φ + φ_t² L1 cos φ + ψ_t² L2 cos ψ − ξ_t² L3 cos ξ`` and
+    ``f2 = −φ_tt L1 cos φ + φ_t² L1 sin φ + ψ_t² L2 sin ψ − ξ_t² L3 sin ξ``.
+    """
+    phi, psi, xi = (np.asarray(v, dtype=float) for v in (phi, psi, xi))
+    l1, l2, l3 = crank, coupler, rocker
+    with np.errstate(divide="ignore", invalid="ignore"):
+        psi_t = -omega * l1 * np.sin(phi - xi) / (l2 * np.sin(psi - xi))
+        xi_t = omega * l1 * np.sin(psi - phi) / (l3 * np.sin(psi - xi))
+        f1 = (alpha * l1 * np.sin(phi) + omega**2 * l1 * np.cos(phi) + psi_t**2 * l2 * np.cos(psi)
+              - xi_t**2 * l3 * np.cos(xi))
+        f2 = (-alpha * l1 * np.cos(phi) + omega**2 * l1 * np.sin(phi) + psi_t**2 * l2 * np.sin(psi)
+              - xi_t**2 * l3 * np.sin(xi))
+        psi_tt = (f1 * np.cos(xi) + f2 * np.sin(xi)) / (l2 * np.sin(xi - psi))
+        xi_tt = (f1 * np.cos(psi) + f2 * np.sin(psi)) / (l3 * np.sin(xi - psi))
+    return psi_t, xi_t, psi_tt, xi_tt
+
+
+# --- assembly and change points -----------------------------------------------------------------
+
+def _half_opening(distance: float, crank: float, reach: float) -> float | None:
+    """The angle β ∈ [0, π] between OA and OC at which |AC| = reach, or None if never.
+
+    From the cosine law |AC|² = L1² + d² − 2 L1 d cos β in half-angle form:
+    ``tan²(β/2) = (reach² − (d − L1)²)/((d + L1)² − reach²)``, computed with atan2.
+    """
+    low, high = abs(distance - crank), distance + crank
+    if reach < low or reach > high:
+        return None
+    return 2.0 * math.atan2(math.sqrt((reach - low) * (reach + low)), math.sqrt((high - reach) * (high + reach)))
+
+
+def assembly_intervals(crank: float, coupler: float, rocker: float,
+                       frame: tuple[float, float]) -> list[tuple[float, float]]:
+    """Crank-angle intervals (rad) in which the four-bar assembles, analytically.
+
+    Returns
+    -------
+    list of (start, stop)
+        ``[(θ0 − π, θ0 + π)]`` for a fully rotating crank (θ0 = direction of OC); one or two
+        intervals (start < stop) otherwise; empty if it never assembles.
+
+    Notes
+    -----
+    The coupler and rocker close the loop when ``|L2 − L3| ≤ |AC| ≤ L2 + L3``. |AC| grows with
+    the angle β = |φ − θ0| ∈ [0, π] between OA and OC, so the conditions are
+    ``β ≥ β_min`` (|AC| = |L2 − L3|) and ``β ≤ β_max`` (|AC| = L2 + L3), chapter 4.
+    """
+    a, b = frame
+    distance = math.hypot(a, b)
+    theta0 = math.atan2(b, a)
+    low, high = abs(distance - crank), distance + crank
+    inner, outer = abs(coupler - rocker), coupler + rocker
+    if outer < low or inner > high:
+        return []
+    beta_min = 0.0 if inner <= low else _half_opening(distance, crank, inner)
+    beta_max = math.pi if outer >= high else _half_opening(distance, crank, outer)
+    if beta_min == 0.0 and beta_max == math.pi:
+        return [(theta0 - math.pi, theta0 + math.pi)]
+    if beta_min == 0.0:
+        return [(theta0 - beta_max, theta0 + beta_max)]
+    if beta_max == math.pi:
+        return [(theta0 + beta_min, theta0 + 2.0 * math.pi - beta_min)]
+    return [(theta0 + beta_min, theta0 + beta_max), (theta0 - beta_max, theta0 - beta_min)]
+
+
+def change_point_angles(crank: float, coupler: float, rocker: float,
+                        frame: tuple[float, float]) -> tuple[float, ...]:
+    """Crank angles (rad, in [θ0, θ0 + 2π)) at which the crank passes a change point.
+
+    At a change point all four joints are in line, the two branches meet and the crank can
+    pass on. It happens at φ = θ0 (A on the segment towards C) when |d − L1| = |L2 − L3|, and
+    at φ = θ0 + π when d + L1 = L2 + L3 (d = |OC|, θ0 its direction); there |AC| passes its
+    extreme, so the two branches touch without the crank having to turn back.
+    """
+    a, b = frame
+    distance = math.hypot(a, b)
+    theta0 = math.atan2(b, a)
+    scale = crank + coupler + rocker + distance
+    found = []
+    if abs(abs(distance - crank) - abs(coupler - rocker)) <= CHANGE_POINT_TOLERANCE * scale:
+        found.append(theta0)
+    if abs(distance + crank - coupler - rocker) <= CHANGE_POINT_TOLERANCE * scale:
+        found.append(theta0 + math.pi)
+    return tuple(found)
+
+
+def _sides(phi: np.ndarray, branch: int, theta0: float, flips: Sequence[float]) -> np.ndarray | int:
+    """The geometric side of B at each crank angle for a linkage that keeps its assembly mode.
+
+    ``branch`` holds for φ − θ0 in (0, π); each change point passed between there and φ
+    (counted on the unwrapped crank angle) changes the side.
+    """
+    if not flips:
+        return branch
+    u = (phi - theta0) / math.pi      # change points at even u (φ = θ0) and odd u (φ = θ0 + π)
+    count = np.zeros(np.shape(phi), dtype=int)
+    for flip in flips:
+        offset = 0.0 if math.isclose(flip, theta0) else 1.0
+        count += np.abs(np.floor((u + offset) / 2.0)).astype(int)
+    return branch * np.where(count % 2 == 0, 1, -1)
+
+
+def _require_frame(value) -> tuple[float, float]:
+    try:
+        a, b = value
+    except (TypeError, ValueError):
+        raise InvalidParameterError("frame", value, "a pair (a, b) of coordinates in m") from None
+    a, b = require_finite("frame[0]", a), require_finite("frame[1]", b)
+    if a == 0.0 and b == 0.0:
+        raise InvalidParameterError("frame", value, "a rocker pivot (a, b) other than the crank pivot (0, 0)")
+    return a, b
+
+
+class FourBar(Mechanism):
+    """Hinged four-bar: crank O→A, coupler A→B, rocker C→B with pivots O = (0, 0), C = (a, b).
+
+    Parameters
+    ----------
+    crank, coupler, rocker : float
+        L1, L2, L3 (m).
+    frame : (float, float)
+        The rocker pivot C = (a, b) (m).
+    branch : int
+        +1: B to the left of the directed line A → C; −1: to the right.
+    keep_side : bool
+        False (default): at a change point the linkage keeps its assembly mode (smooth
+        continuation, see Notes). True: B stays on the side ``branch`` of A → C at every crank
+        angle, so at a change point the linkage turns back into its own mode with a jump of the
+        angular velocities (the source's drop-shaped lambda curve at d = 11 is drawn so).
+
+    Notes
+    -----
+    Continuation rule (chapter 4). Outside change points the geometric side of B is the same
+    at every crank angle, so ``branch`` says it once and for all. A change-point linkage
+    (s + l = p + q: parallelogram, deltoid …) has crank angles where the two branches meet (all
+    joints in line); there the linkage keeps its assembly mode, i.e. it continues smoothly, with
+    continuous angular velocities, and its geometric side changes. For such a linkage
+    ``branch`` is the side on the stretch of crank angles between change points that contains
+    φ = θ0 + π/2 (θ0 = direction of OC; φ taken as it is, not modulo 2π), and the side at any
+    other crank angle follows by counting the change points passed. The rule depends on the
+    crank angle only, not on the step or the order of the array: a parallelogram stays a
+    parallelogram whatever the step. With one change point per turn the motion repeats only
+    after two turns of the crank (the second turn is the mirror assembly). At the change point itself
+    the velocities are not determined by the constraints and are marked singular.
+    """
+
+    cli_name = "four-bar"
+    cli_parameters = (
+        Parameter("crank", "length", "crank length L1, m"),
+        Parameter("coupler", "length", "coupler length L2 (A to B), m"),
+        Parameter("rocker", "length", "rocker length L3 (C to B), m"),
+        Parameter("frame", "pair", "rocker pivot C = (a, b), m, as A,B"),
+        Parameter("branch", "branch", "+1: B left of the line A->C, -1: right of it", 1),
+    )
+    links = {"crank": "O", "coupler": "A", "rocker": "C"}
+
+    def __init__(self, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
+                 branch: int = 1, keep_side: bool = False):
+        self.keep_side = bool(keep_side)
+        self.crank = require_length("crank", crank)
+        self.coupler = require_length("coupler", coupler)
+        self.rocker = require_length("rocker", rocker)
+        self.frame = _require_frame(frame)
+        self.branch = require_branch(branch)
+
+    @property
+    def pivot(self) -> complex:
+        """The rocker pivot C as ``a + ib`` (m)."""
+        return complex(*self.frame)
+
+    @property
+    def lengths(self) -> tuple[float, float, float, float]:
+        """(L1, L2, L3, d): crank, coupler, rocker and frame |OC| (m)."""
+        return self.crank, self.coupler, self.rocker, abs(self.pivot)
+
+    def assembly_intervals(self) -> list[tuple[float, float]]:
+        """Crank-angle intervals (rad) in which the linkage assembles (see module function)."""
+        return assembly_intervals(self.crank, self.coupler, self.rocker, self.frame)
+
+    def change_points(self) -> tuple[float, ...]:
+        """Crank angles (rad) of the change points the crank passes (empty for most linkages)."""
+        return change_point_angles(self.crank, self.coupler, self.rocker, self.frame)
+
+    def sides(self, phi: ArrayLike) -> np.ndarray:
+        """The geometric side (+1/−1) of B relative to A → C at each crank angle (continuation rule)."""
+        phi = np.asarray(phi, dtype=float)
+        if self.keep_side:
+            return np.full(phi.shape, self.branch)
+        side = _sides(phi, self.branch, math.atan2(self.frame[1], self.frame[0]), self.change_points())
+        return np.broadcast_to(side, phi.shape).copy()
+
+    def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        # long arrays block by block, in the processor's cache (chapter 8)
+        return solve_in_blocks(self._solve_block, crank, order, self.links)
+
+    def _solve_block(self, crank: AngleMotion, order: int) -> Solution:
+        phi = crank.value
+        pin = crank_pin(crank, self.crank)
+        pivot = fixed_point(self.pivot, phi, order)
+        try:
+            # one side for all positions unless the crank passes change points
+            side = self.branch if self.keep_side or not self.change_points() else self.sides(phi)
+            joint = hinge(pin, pivot, self.coupler, self.rocker, side, phi)
+        except AssemblyError as error:
+            intervals = self.assembly_intervals()
+            reason = f"the four-bar cannot be assembled: {error.reason}"
+            valid = None
+            if len(intervals) == 1:
+                valid = intervals[0]
+            elif intervals:
+                reason += " (it assembles for crank angles in " + " and ".join(
+                    describe_range(lo, hi) for lo, hi in intervals) + ")"
+            else:
+                reason += " (at no crank angle)"
+            raise AssemblyError(reason, error.angles, valid) from None
+        origin = fixed_point(0.0, phi, order)
+        return Solution(phi, order,
+                        angles={"crank": crank, "coupler": joint.angle_p, "rocker": joint.angle_q},
+                        points={"O": origin, "A": pin, "B": joint.point, "C": pivot},
+                        links=self.links, singular=joint.singular)
+
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
+        return [Ground("O"), Ground("C"), Bar("crank", ("O", "A"), "crank"),
+                Bar("coupler", ("A", "B"), "coupler"), Bar("rocker", ("C", "B"), "rocker")]
+
+    def preserved_distances(self) -> dict[tuple[str, str], float]:
+        return {("O", "A"): self.crank, ("A", "B"): self.coupler, ("C", "B"): self.rocker,
+                ("O", "C"): abs(self.pivot)}
+
+    def coordinates(self, solution: Solution) -> list[Motion]:
+        return [solution.angle("coupler"), solution.angle("rocker")]
+
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
+        psi, xi = q
+        a, b = self.frame
+        return (self.crank * np.cos(phi) + self.coupler * np.cos(psi) - self.rocker * np.cos(xi) - a,
+                self.crank * np.sin(phi) + self.coupler * np.sin(psi) - self.rocker * np.sin(xi) - b)

@@ -1,0 +1,95 @@
+"""Layer 3: Chebyshev's lambda mechanism (Pylypaka and Chepizhnyi, 2019, problem 4), chapter 4.
+
+A four-bar whose coupler is extended beyond the rocker joint: crank O → A of length r about
+O = (0, 0); coupler A → B of length 2b; rocker D → C of length b about D = (−d, 0), hinged to
+the coupler at its midpoint C (AC = CB = DC = b). The point B traces a curve with a nearly
+straight part: the lambda mechanism is a straight-line guide.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
+from ..core.errors import AssemblyError
+from ..core.validate import require_branch, require_length
+from .four_bar import FourBar
+from ..core.motion import AngleMotion, Motion, point_on_link
+
+__all__ = ["LambdaMechanism"]
+
+
+class LambdaMechanism(Mechanism):
+    """Chebyshev's lambda mechanism: crank r, coupler A→B of length 2b, rocker D→C of length b.
+
+    Parameters
+    ----------
+    crank : float
+        Crank length r = OA (m).
+    half_coupler : float
+        b = AC = CB = DC (m): half the coupler, and the rocker.
+    ground : float
+        d (m): the rocker pivot D is at (−d, 0).
+    branch : int
+        Side of the directed line A → D on which C lies: −1 (default) puts C above the frame
+        line, as in the source's figure; +1 is the mirror assembly.
+
+    Notes
+    -----
+    Joints O, A, C, B, D; links ``crank`` (O→A, angle φ), ``coupler`` (A→B, angle ψ of the
+    chapter; the source measures γ = π − ψ from −x) and ``rocker`` (D→C, angle ε). It is the
+    four-bar O-A-C-D of chapter 4 with B = A + 2(C − A), so the four-bar's continuation rule
+    holds at a change point (d + r = 2b).
+    """
+
+    cli_name = "lambda"
+    cli_parameters = (
+        Parameter("crank", "length", "crank length r = OA, m"),
+        Parameter("half_coupler", "length", "b = AC = CB = DC, m (coupler A->B has length 2b)"),
+        Parameter("ground", "length", "d, m: the rocker pivot D is at (-d, 0)"),
+    )
+    links = {"crank": "O", "coupler": "A", "rocker": "D"}
+
+    def __init__(self, crank: float, half_coupler: float, ground: float, branch: int = -1,
+                 keep_side: bool = False):
+        self.crank = require_length("crank", crank)
+        self.half_coupler = require_length("half_coupler", half_coupler)
+        self.ground = require_length("ground", ground)
+        self.branch = require_branch(branch)
+        self.four_bar = FourBar(self.crank, self.half_coupler, self.half_coupler, (-self.ground, 0.0), self.branch,
+                                 keep_side)
+
+    def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        try:
+            inner = self.four_bar._solve(crank, order)
+        except AssemblyError as error:
+            raise AssemblyError(error.reason.replace("four-bar", "lambda mechanism"), error.angles,
+                                error.valid_range) from None
+        coupler = inner.angle("coupler")
+        end = point_on_link(inner.point("A"), coupler, 2.0 * self.half_coupler)
+        return Solution(crank.value, order,
+                        angles={"crank": crank, "coupler": coupler, "rocker": inner.angle("rocker")},
+                        points={"O": inner.point("O"), "A": inner.point("A"), "C": inner.point("B"), "B": end,
+                                "D": inner.point("C")},
+                        links=self.links, singular=inner.singular)
+
+    def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
+        return [Ground("O"), Ground("D"), Bar("crank", ("O", "A"), "crank"),
+                Bar("coupler", ("A", "C", "B"), "coupler"), Bar("rocker", ("D", "C"), "rocker")]
+
+    def preserved_distances(self) -> dict[tuple[str, str], float]:
+        b = self.half_coupler
+        return {("O", "A"): self.crank, ("A", "C"): b, ("C", "B"): b, ("A", "B"): 2.0 * b, ("D", "C"): b,
+                ("O", "D"): self.ground}
+
+    def coordinates(self, solution: Solution) -> list[Motion]:
+        return [solution.angle("coupler"), solution.angle("rocker")]
+
+    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
+        psi, epsilon = q
+        r, b, d = self.crank, self.half_coupler, self.ground
+        return (r * np.cos(phi) + b * np.cos(psi) - b * np.cos(epsilon) + d,
+                r * np.sin(phi) + b * np.sin(psi) - b * np.sin(epsilon))

@@ -1,0 +1,478 @@
+"""Layer 6: figures of the book — one style, drawings of mechanisms, diagrams, animations.
+
+Every figure of the book is made here, so a notebook cell that makes a figure is two or three
+lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors are always
+:data:`VELOCITY_COLOUR`, accelerations :data:`ACCELERATION_COLOUR`.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Iterable, Sequence
+
+import matplotlib
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib import animation
+from matplotlib.patches import Polygon, Rectangle
+
+from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
+from ..core.motion import PointMotion
+from .workarounds import offline_jshtml, skip_idle_redraw
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+__all__ = [
+    "ROLE_COLOURS",
+    "PATH_COLOURS",
+    "VELOCITY_COLOUR",
+    "ACCELERATION_COLOUR",
+    "use_book_style",
+    "draw",
+    "trajectories",
+    "vectors_along",
+    "diagram",
+    "animate",
+    "link_snapshots",
+    "animate_links",
+    "annotate_angle",
+    "annotate_length",
+    "annotate_dimension",
+    "draw_positions",
+]
+
+ROLE_COLOURS = {
+    "frame": "#4d4d4d",
+    "crank": "#1f77b4",
+    "coupler": "#d62728",
+    "rocker": "#2ca02c",
+    "lever": "#2ca02c",
+    "slider": "#9467bd",
+    "point": "#ff7f0e",
+}
+PATH_COLOURS = ("#8c564b", "#ff7f0e", "#7f7f7f", "#bcbd22", "#1f77b4", "#2ca02c", "#9467bd", "#d62728",
+                "#17a589", "#5d6d7e")
+"""Colours of trajectories, in order (distinct from the vector colours)."""
+ANIMATION_DPI = 72
+"""Resolution of animation frames: 432 × 288 px for a 6 × 4 in figure, about 15 kB a frame."""
+VELOCITY_COLOUR = "#17becf"
+ACCELERATION_COLOUR = "#e377c2"
+
+BOOK_STYLE = {
+    "figure.figsize": (6.4, 4.0),
+    "figure.dpi": 100,
+    "savefig.dpi": 100,
+    "font.size": 10,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "legend.frameon": False,
+    "animation.embed_limit": 40.0,
+    "svg.hashsalt": "mechanisms",
+}
+
+
+def use_book_style() -> None:
+    """Set the book's matplotlib style (called on import of :mod:`mechanisms.plot`)."""
+    matplotlib.rcParams.update(BOOK_STYLE)
+
+
+use_book_style()
+
+
+def _new_axes(ax, equal: bool = True):
+    if ax is None:
+        _, ax = plt.subplots()
+    if equal:
+        ax.set_aspect("equal")
+    return ax
+
+
+def _pivot_symbol(ax, point: complex, size: float) -> None:
+    """A frame pivot: a small triangle on a hatched base."""
+    x, y = point.real, point.imag
+    triangle = Polygon([(x, y), (x - size, y - 1.6 * size), (x + size, y - 1.6 * size)], closed=True,
+                       facecolor="white", edgecolor=ROLE_COLOURS["frame"], lw=1.2, zorder=2)
+    ax.add_patch(triangle)
+    ax.add_patch(Rectangle((x - 1.6 * size, y - 2.2 * size), 3.2 * size, 0.6 * size, facecolor="none",
+                           edgecolor=ROLE_COLOURS["frame"], hatch="////", lw=0.0, zorder=1))
+
+
+def _guide_symbol(ax, through: complex, angle: float, half_length: float, size: float) -> None:
+    direction = np.exp(1j * angle)
+    normal = 1j * direction
+    a, b = through - half_length * direction, through + half_length * direction
+    ax.plot([a.real, b.real], [a.imag, b.imag], color=ROLE_COLOURS["frame"], lw=1.2, zorder=1)
+    corners = [a, b, b - 0.7 * size * normal, a - 0.7 * size * normal]
+    ax.add_patch(Polygon([(c.real, c.imag) for c in corners], closed=True, facecolor="none",
+                         edgecolor=ROLE_COLOURS["frame"], hatch="////", lw=0.0, zorder=0))
+
+
+def _block_corners(centre: complex, angle: float, size: float) -> list[tuple[float, float]]:
+    direction = np.exp(1j * angle)
+    normal = 1j * direction
+    corners = [centre + s * 1.4 * size * direction + t * 0.8 * size * normal for s, t in
+               ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+    return [(c.real, c.imag) for c in corners]
+
+
+def _block_symbol(ax, centre: complex, angle: float, size: float) -> None:
+    ax.add_patch(Polygon(_block_corners(centre, angle, size), closed=True, facecolor="#efe7f7",
+                         edgecolor=ROLE_COLOURS["slider"], lw=1.5, zorder=3))
+
+
+def _extent(solution: Solution) -> float:
+    points = np.concatenate([np.ravel(solution.point(n).value) for n in solution.point_names])
+    span = np.ptp(points.real) + np.ptp(points.imag) if points.size else 1.0
+    return float(span) or 1.0
+
+
+def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | None = None, labels: bool = True,
+         size: float | None = None, guide_half_length: float | None = None,
+         label_offset: tuple[float, float] = (5.0, 5.0)) -> Axes:
+    """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        What to draw (its :meth:`~mechanisms.base.Mechanism.scheme`).
+    solution : Solution
+        A solution with at least positions (``order=0`` is enough).
+    index : int
+        Which crank position of the solution to draw.
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if omitted.
+    labels : bool
+        Write the joint names next to the joints.
+    size : float, optional
+        Size of hinges and symbols (m); by default 3 % of the mechanism's extent.
+    label_offset : (float, float)
+        Where the joint names sit relative to their joints, in points.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax = _new_axes(ax)
+    size = size or 0.03 * _extent(solution)
+    where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
+    guide_half_length = guide_half_length or 0.6 * _extent(solution)
+    artists = []
+    for item in mechanism.scheme():
+        if isinstance(item, Guide):
+            _guide_symbol(ax, item.through, item.angle, guide_half_length, size)
+        elif isinstance(item, Ground):
+            _pivot_symbol(ax, where[item.joint], size)
+        elif isinstance(item, Bar):
+            pts = [where[j] for j in item.joints]
+            artists += ax.plot([p.real for p in pts], [p.imag for p in pts], color=ROLE_COLOURS.get(item.role, "k"),
+                               lw=3.0, solid_capstyle="round", zorder=2, label="_nolegend_", gid=item.link)
+        elif isinstance(item, Block):
+            angle = item.angle if isinstance(item.angle, (int, float)) else float(
+                solution.angle(item.angle).value[index])
+            _block_symbol(ax, where[item.joint], angle, size)
+    hinges = np.array(list(where.values()))
+    ax.plot(hinges.real, hinges.imag, "o", ms=6, mfc="white", mec="black", mew=1.2, zorder=4)
+    if labels:
+        for name, p in where.items():
+            ax.annotate(name, (p.real, p.imag), xytext=label_offset, textcoords="offset points", fontsize=10,
+                        zorder=5)
+    ax.set_xlabel("x, m")
+    ax.set_ylabel("y, m")
+    return ax
+
+
+def annotate_angle(ax: Axes, vertex: complex, start: float, stop: float, label: str, radius: float,
+                   colour: str = "0.25") -> None:
+    """Mark an angle on a drawing: an arc from ``start`` to ``stop`` (rad) about ``vertex``, labelled.
+
+    A dotted reference line is drawn along the ``start`` direction (usually the +x axis).
+    """
+    sweep = np.linspace(start, stop, 40)
+    arc = vertex + radius * np.exp(1j * sweep)
+    ax.plot(arc.real, arc.imag, color=colour, lw=0.9)
+    ref = vertex + 1.5 * radius * np.exp(1j * start)
+    ax.plot([vertex.real, ref.real], [vertex.imag, ref.imag], color=colour, lw=0.7, ls=":")
+    tip = arc[-1] - arc[-2]
+    ax.annotate("", xy=(arc[-1].real, arc[-1].imag), xytext=(arc[-1].real - tip.real, arc[-1].imag - tip.imag),
+                arrowprops={"arrowstyle": "->", "color": colour, "lw": 0.9})
+    middle = vertex + 1.25 * radius * np.exp(1j * 0.5 * (start + stop))
+    ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11, color=colour)
+
+
+def annotate_length(ax: Axes, first: complex, second: complex, label: str, offset: float) -> None:
+    """Write a length's symbol beside the segment first–second, ``offset`` m to its left."""
+    middle = 0.5 * (first + second) + offset * 1j * np.exp(1j * np.angle(second - first))
+    ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11)
+
+
+def annotate_dimension(ax: Axes, start: complex, end: complex, label: str, both: bool = True,
+                       offset: float = 0.0) -> None:
+    """A dimension arrow from ``start`` to ``end`` (m) with its symbol beside the middle.
+
+    ``both`` draws a double-headed arrow (a length such as an offset e); otherwise a single
+    arrow from start to end (a coordinate such as the slider's s). The label sits ``offset`` m
+    to the left of the arrow (default: 4 % of its length).
+    """
+    ax.annotate("", xy=(end.real, end.imag), xytext=(start.real, start.imag),
+                arrowprops={"arrowstyle": "<->" if both else "->", "color": "0.2", "lw": 0.9})
+    direction = np.exp(1j * np.angle(end - start))
+    where = 0.5 * (start + end) + (offset or 0.06 * abs(end - start) + 0.004) * 1j * direction
+    ax.text(where.real, where.imag, label, ha="center", va="center", fontsize=11)
+
+
+def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[int] | None = None,
+                   ax: Axes | None = None, paths: dict[str, PointMotion] | None = None, **draw_options) -> Axes:
+    """A family of positions: the mechanism drawn at several crank angles, over point paths.
+
+    Parameters
+    ----------
+    mechanism, solution
+        What to draw; ``solution`` needs positions only.
+    indices : iterable of int, optional
+        Positions to draw (default: all of the solution's).
+    paths : dict, optional
+        ``{label: PointMotion}`` trajectories drawn underneath, in :data:`PATH_COLOURS`,
+        with a legend.
+    draw_options
+        Passed to :func:`draw` (``labels``, ``size``, ``guide_half_length``); labels are off
+        by default.
+    """
+    ax = _new_axes(ax)
+    if paths:
+        trajectories(solution, paths, ax=ax)
+        ax.legend(loc="upper right", ncol=2)
+    draw_options.setdefault("labels", False)
+    for i in range(len(solution)) if indices is None else indices:
+        draw(mechanism, solution, i, ax=ax, **draw_options)
+    return ax
+
+
+def _full_turn(phi: np.ndarray) -> bool:
+    """True when evenly spaced crank angles cover a whole turn (the last step would close it)."""
+    if np.size(phi) < 3:
+        return False
+    step = np.diff(phi)
+    return bool(np.allclose(step, step[0]) and abs(abs(phi[-1] - phi[0] + step[0]) - 2 * np.pi) < 1e-9)
+
+
+def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Sequence[str], ax: Axes | None = None,
+                 colours: Iterable[str] | None = None) -> Axes:
+    """Draw the paths of points: named joints of the solution or given point motions.
+
+    Parameters
+    ----------
+    solution : Solution or None
+        The solution (positions over the crank angles); may be None when ``points`` is a dict.
+        When its crank angles cover a whole turn evenly, each path is drawn closed.
+    points : sequence of str or dict
+        Joint names, or ``{label: PointMotion}`` (e.g. from ``solution.point_on``).
+    """
+    ax = _new_axes(ax)
+    if not isinstance(points, dict):
+        points = {name: solution.point(name) for name in points}
+    colours = iter(colours if colours is not None else PATH_COLOURS * 4)
+    closed = solution is not None and _full_turn(solution.phi)
+    for label, motion in points.items():
+        x, y = (np.append(motion.x, motion.x[0]), np.append(motion.y, motion.y[0])) if closed else (motion.x, motion.y)
+        ax.plot(x, y, lw=1.2, label=label, color=next(colours))
+    ax.set_xlabel("x, m")
+    ax.set_ylabel("y, m")
+    return ax
+
+
+def vectors_along(motion: PointMotion, every: int = 1, ax: Axes | None = None, scale_velocity: float | None = None,
+                  scale_acceleration: float | None = None, velocity: bool = True, acceleration: bool = True) -> Axes:
+    """Velocity and acceleration vectors drawn at points of a trajectory.
+
+    The vectors are scaled so that the longest is 15 % of the path's extent unless scales
+    (m per m/s, m per m/s²) are given; the book states the scale in the caption.
+    """
+    ax = _new_axes(ax)
+    sel = slice(None, None, every)
+    p = motion.value[sel]
+    extent = (np.ptp(motion.x) + np.ptp(motion.y)) or 1.0
+    for show, vec, colour, scale in ((velocity, motion.velocity, VELOCITY_COLOUR, scale_velocity),
+                                     (acceleration, motion.acceleration, ACCELERATION_COLOUR, scale_acceleration)):
+        if not show or vec is None:
+            continue
+        v = vec[sel]
+        scale = scale or 0.15 * extent / (np.max(np.abs(v)) or 1.0)
+        ax.quiver(p.real, p.imag, (v * scale).real, (v * scale).imag, angles="xy", scale_units="xy", scale=1.0,
+                  color=colour, width=0.004, zorder=3)
+    return ax
+
+
+def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axes | None = None, step_deg: int = 30,
+            colours: Iterable[str] | None = None, angle_symbol: str = "φ") -> Axes:
+    """Quantities against the crank angle (degrees, ticks every ``step_deg``).
+
+    Parameters
+    ----------
+    phi : ndarray
+        Crank angles (rad).
+    curves : dict
+        ``{label: values}``; the label goes into the legend when there is more than one.
+    ylabel : str
+        Axis label with its unit.
+    colours : iterable of str, optional
+        One colour per curve; by default :data:`PATH_COLOURS`, the colours of
+        :func:`trajectories`, so a point keeps its colour from path to diagram.
+    angle_symbol : str
+        The crank angle's symbol on the axis (chapter 7 writes ψ, after its source).
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.4, 3.2))
+    deg = np.degrees(phi)
+    colours = iter(colours if colours is not None else PATH_COLOURS * 4)
+    for label, values in curves.items():
+        ax.plot(deg, values, label=label, color=next(colours))
+    lo, hi = np.floor(deg.min() / step_deg) * step_deg, np.ceil(deg.max() / step_deg) * step_deg
+    ax.set_xticks(np.arange(lo, hi + 0.5 * step_deg, step_deg))
+    ax.set_xlim(deg.min(), deg.max())
+    ax.set_xlabel(f"crank angle {angle_symbol}, °")
+    ax.set_ylabel(ylabel)
+    if len(curves) > 1:
+        ax.legend()
+    return ax
+
+
+def _to_html(fig, frame, count: int, interval: int) -> str:
+    """Run ``frame(k)`` for k = 0 … count−1 into an HTML/JavaScript animation; close the figure."""
+    fig.set_dpi(ANIMATION_DPI)
+    skip_idle_redraw(fig)
+    anim = animation.FuncAnimation(fig, frame, frames=count, interval=interval, blit=False)
+    html = offline_jshtml(anim.to_jshtml(default_mode="loop"))
+    plt.close(fig)
+    return html
+
+
+def _limits(values: np.ndarray, margin: float) -> tuple[float, float, float, float]:
+    return (values.real.min() - margin, values.real.max() + margin,
+            values.imag.min() - 1.3 * margin, values.imag.max() + margin)  # room for hatching below
+
+
+def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dict[str, PointMotion] = (),
+            frames: int | None = None, interval: int = 80, labels: bool = True, title: str | None = None,
+            angle_symbol: str = "φ") -> str:
+    """An animation of the mechanism over the solution's positions, as HTML that plays offline.
+
+    Parameters
+    ----------
+    mechanism, solution
+        What to animate; the solution's positions are the frames (36–72 is plenty).
+    paths : sequence of str or dict
+        Joint names, or ``{label: PointMotion}`` (e.g. a centre of mass from
+        ``solution.point_on``), whose whole trajectories are drawn underneath.
+    frames : int, optional
+        Use only this many evenly spaced positions.
+    interval : int
+        Milliseconds per frame.
+    angle_symbol : str
+        The crank angle's symbol in each frame's title (chapter 7 writes ψ, after its source).
+
+    Returns
+    -------
+    str
+        HTML from :meth:`matplotlib.animation.Animation.to_jshtml`; the figure is closed.
+        Show it with ``IPython.display.HTML``; the play controls work in the static site.
+    """
+    n = len(solution)
+    chosen = np.linspace(0, n - 1, frames).round().astype(int) if frames else np.arange(n)
+    fig, ax = plt.subplots(figsize=(6.0, 4.0))
+    pts = np.concatenate([np.ravel(solution.point(p).value) for p in solution.point_names])
+    limits = _limits(pts, 0.12 * _extent(solution))
+
+    def frame(k):
+        ax.clear()
+        if paths:
+            trajectories(solution, paths if isinstance(paths, dict) else list(paths), ax=ax,
+                         colours=["0.7"] * len(paths))
+        draw(mechanism, solution, chosen[k], ax=ax, labels=labels)
+        ax.set_xlim(limits[0], limits[1])
+        ax.set_ylim(limits[2], limits[3])
+        ax.set_title(title or f"{angle_symbol} = {np.degrees(solution.phi[chosen[k]]) % 360:.0f}°")
+
+    return _to_html(fig, frame, len(chosen), interval)
+
+
+def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax: Axes | None = None, every: int = 1,
+                   paths: bool = True) -> Axes:
+    """A link drawn as a bar between two of its points at several instants, faded in time order.
+
+    Parameters
+    ----------
+    first, second : PointMotion
+        Two points of the link (positions over time, m).
+    role : str
+        The link's role, for its colour (``crank``, ``rocker``, ``coupler``, ``slider`` …).
+    every : int
+        Draw every ``every``-th instant.
+    paths : bool
+        Also draw the trajectories of both points.
+    """
+    ax = _new_axes(ax)
+    colour = ROLE_COLOURS.get(role, "k")
+    index = np.arange(0, first.value.size, every)
+    if role == "slider":  # a block that translates: draw the block, its guide and the travel
+        span = (np.ptp(first.x) + np.ptp(first.y)) or 0.01
+        angle = float(np.angle(second.value[0] - first.value[0]))
+        _guide_symbol(ax, complex(np.mean(first.value)) - 0.06 * span * 1j * np.exp(1j * angle), angle,
+                      0.7 * span, 0.05 * span)
+        for rank, i in enumerate(index):
+            block = Polygon(_block_corners(first.value[i], angle, 0.05 * span), closed=True, facecolor="none",
+                            edgecolor=colour, lw=1.5, alpha=min(1.0, 0.35 + 0.65 * rank / max(len(index) - 1, 1)))
+            ax.add_patch(block)
+        centre = complex(np.mean(first.value))
+        ax.set_ylim(centre.imag - 0.35 * span, centre.imag + 0.35 * span)
+    else:
+        for rank, i in enumerate(index):
+            p, q = first.value[i], second.value[i]
+            ax.plot([p.real, q.real], [p.imag, q.imag], color=colour, lw=2.5,
+                    alpha=min(1.0, 0.35 + 0.65 * rank / max(len(index) - 1, 1)), solid_capstyle="round")
+    if paths:
+        for motion in (first, second):
+            ax.plot(motion.x, motion.y, color="0.6", lw=0.8, ls="--")
+    ax.set_xlabel("x, m")
+    ax.set_ylabel("y, m")
+    return ax
+
+
+def animate_links(links: dict[str, tuple[PointMotion, PointMotion, str]], times: np.ndarray, interval: int = 80) -> str:
+    """An animation of links given by the motions of two of their points (no mechanism needed).
+
+    Parameters
+    ----------
+    links : dict
+        ``{label: (first point, second point, role)}``; each link is drawn as a bar.
+    times : ndarray
+        The instants (s), one frame each, shown in the title.
+
+    Returns
+    -------
+    str
+        HTML that plays offline; the figure is closed.
+    """
+    fig, ax = plt.subplots(figsize=(6.0, 4.0))
+    everything = np.concatenate([np.concatenate([p.value, q.value]) for p, q, _ in links.values()])
+    limits = _limits(everything, 0.08 * (np.ptp(everything.real) + np.ptp(everything.imag)))
+
+    def frame(k):
+        ax.clear()
+        for label, (p, q, role) in links.items():
+            ax.plot([p.value[k].real, q.value[k].real], [p.value[k].imag, q.value[k].imag],
+                    color=ROLE_COLOURS.get(role, "k"), lw=3, solid_capstyle="round", label=label)
+            ax.plot(q.x[: k + 1], q.y[: k + 1], color="0.7", lw=0.8)
+            ax.plot([p.value[k].real, q.value[k].real], [p.value[k].imag, q.value[k].imag], "o", ms=5, mfc="white",
+                    mec="black")
+        ax.set_aspect("equal")
+        ax.set_xlim(limits[0], limits[1])
+        ax.set_ylim(limits[2], limits[3])
+        ax.set_xlabel("x, m")
+        ax.set_ylabel("y, m")
+        ax.legend(loc="upper right", fontsize=8)
+        ax.set_title(f"t = {times[k]:.3f} s")
+
+    return _to_html(fig, frame, len(times), interval)

@@ -1,0 +1,212 @@
+"""Layer 5: the generic solver — Newton's method on the constraint equations Φ(q, φ) = 0.
+
+The lecture's recommended sequence of a kinematic analysis ends every few steps with checks:
+the trajectories look right, the constraint equations hold, the distances between the joints of
+one link are preserved, and velocities and accelerations agree with numerical differentiation of
+the positions. This module provides those checks and an independent reference solution:
+
+* :func:`solve_constraints` — Newton's method on the constraint equations Φ(q, φ) = 0 of any
+  mechanism given as a function, velocities from ``Φ_q q_t = −Φ_φ φ_t`` and accelerations from
+  the twice-differentiated constraints; the derivatives of Φ are exact (:class:`~mechanisms.jet.Jet`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..linkages.base import Mechanism
+from ..core.errors import AssemblyError
+from ..core.validate import require_order
+from .jet import Jet
+
+__all__ = [
+    "GenericSolution",
+    "solve_constraints",
+    "newton_history",
+    "solve_generic",
+]
+
+Constraints = Callable[[Sequence, object], Sequence]
+
+
+@dataclass(frozen=True)
+class GenericSolution:
+    """Result of :func:`solve_constraints`: arrays of shape (k, n) for k unknowns at n positions."""
+
+    q: np.ndarray
+    q_t: np.ndarray | None
+    q_tt: np.ndarray | None
+    iterations: int
+    residual: float
+
+
+def _evaluate(constraints: Constraints, q, phi) -> list:
+    return list(constraints(q, phi))
+
+
+def _jacobian(constraints: Constraints, q: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Residuals Φ (n, k) and Jacobian Φ_q (n, k, k), exact, at every position."""
+    k = q.shape[0]
+    columns = []
+    residual = None
+    for j in range(k):
+        seeded = [Jet(q[i], 1.0 if i == j else 0.0) for i in range(k)]
+        out = _evaluate(constraints, seeded, phi)
+        residual = [np.broadcast_to(r.f if isinstance(r, Jet) else r, phi.shape) for r in out]
+        columns.append([np.broadcast_to(r.d1 if isinstance(r, Jet) else 0.0, phi.shape) for r in out])
+    jac = np.stack([np.stack(col, axis=-1) for col in columns], axis=-1)  # (n, k_eq, k_unknown)
+    return np.stack(residual, axis=-1), jac
+
+
+def _newton(constraints, q, phi, tol, max_iter):
+    """Vectorized Newton iterations from the guess q (k, n); returns q and the iterations used."""
+    for iteration in range(1, max_iter + 1):
+        residual, jac = _jacobian(constraints, q, phi)
+        with np.errstate(all="ignore"):
+            try:
+                step = np.linalg.solve(jac, residual[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                step = np.full_like(residual, np.nan)
+        q = q - step.T
+        size = np.max(np.abs(step), axis=-1)
+        bad = ~np.isfinite(size)
+        if bad.any():
+            raise AssemblyError("Newton's method met a singular constraint Jacobian (no assembly or a "
+                                "dead centre)", phi[bad])
+        if np.all(size <= tol * (1.0 + np.max(np.abs(q), axis=0))):
+            return q, iteration
+    raise AssemblyError(f"Newton's method did not converge in {max_iter} iterations "
+                        "(no assembly, or the guess is far off)", phi[size > tol * (1.0 + np.max(np.abs(q), axis=0))])
+
+
+def _continue(constraints, guess, phi, tol, max_iter, max_step):
+    """Continuation from the first crank angle on, sub-stepping so no step exceeds ``max_step``.
+
+    Each solve starts from the linear extrapolation of the last two solutions, so the
+    solution follows the branch of the guess even across coarse steps between the positions.
+    """
+    q = np.empty((guess.size, phi.size))
+    path: list[tuple[float, np.ndarray]] = []   # the latest two (angle, solution) on the path
+    iterations = 0
+    for i in range(phi.size):
+        if i == 0:
+            targets = phi[:1]
+        else:
+            steps = max(1, int(np.ceil(abs(phi[i] - path[-1][0]) / max_step)))
+            targets = np.linspace(path[-1][0], phi[i], steps + 1)[1:]
+        for target in targets:
+            if len(path) == 2 and path[1][0] != path[0][0]:
+                (a0, q0), (a1, q1) = path
+                start = q1 + (q1 - q0) * (target - a1) / (a1 - a0)   # linear extrapolation
+            else:
+                start = path[-1][1] if path else guess
+            qi, used = _newton(constraints, start[:, None], np.array([target]), tol, max_iter)
+            path = path[-1:] + [(float(target), qi[:, 0])]
+            iterations = max(iterations, used)
+        q[:, i] = path[-1][1]
+    return q, iterations
+
+
+def solve_constraints(constraints: Constraints, guess: ArrayLike, phi: ArrayLike, omega: ArrayLike = 1.0,
+                      alpha: ArrayLike = 0.0, order: int = 2,
+                      tol: float = 1e-13, max_iter: int = 50, max_step: float = np.radians(2.0)) -> GenericSolution:
+    """Solve the constraint equations Φ(q, φ) = 0 by Newton's method, with exact derivatives.
+
+    Parameters
+    ----------
+    constraints : callable
+        ``constraints(q, phi) -> sequence of k residuals``; ``q`` is a sequence of k arrays
+        (the unknowns), ``phi`` the crank angles. Numpy operations only (see
+        :class:`~mechanisms.jet.Jet`).
+    guess : array_like, shape (k,) or (k, n)
+        Starting values. Shape (k,): the solution is continued position by position from the
+        first crank angle, in sub-steps of at most ``max_step``, so the branch of the guess is
+        kept (order ``phi`` along the motion). Shape (k, n): one guess per position, all
+        solved at once.
+    phi : array_like, shape (n,)
+        Crank angles φ (rad).
+    omega, alpha : float or array_like
+        Crank angular velocity φ_t (rad/s) and acceleration φ_tt (rad/s²).
+    order : int
+        0, 1 or 2.
+    tol : float
+        Newton stops when every step is below ``tol·(1 + |q|)``.
+    max_iter : int
+        Iterations allowed per solve before :class:`AssemblyError`.
+    max_step : float
+        Largest crank-angle step (rad) of the continuation.
+
+    Returns
+    -------
+    GenericSolution
+
+    Notes
+    -----
+    Positions: ``q ← q − Φ_q⁻¹ Φ``. Velocities: ``Φ_q q_t = −Φ_φ φ_t``. Accelerations: the
+    constraints differentiated twice along the motion, ``Φ_q q_tt = −(d²Φ/dt²)|_{q_tt = 0}``
+    (chapter 2). All derivatives of Φ come from :class:`~mechanisms.jet.Jet`, exactly.
+    """
+    order = require_order(order)
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    guess = np.asarray(guess, dtype=float)
+    if guess.ndim == 2:
+        q, iterations = _newton(constraints, guess.copy(), phi, tol, max_iter)
+    else:
+        q, iterations = _continue(constraints, guess, phi, tol, max_iter, max_step)
+    residual, jac = _jacobian(constraints, q, phi)
+    q_t = q_tt = None
+    if order >= 1:
+        omega = np.broadcast_to(np.asarray(omega, dtype=float), phi.shape)
+        alpha = np.broadcast_to(np.asarray(alpha, dtype=float), phi.shape)
+        rate = _evaluate(constraints, [Jet(qi) for qi in q], Jet(phi, omega))
+        rhs = -np.stack([np.broadcast_to(r.d1 if isinstance(r, Jet) else 0.0, phi.shape) for r in rate], -1)
+        q_t = np.linalg.solve(jac, rhs[..., None])[..., 0].T
+        if order == 2:
+            path = _evaluate(constraints, [Jet(qi, vi) for qi, vi in zip(q, q_t)], Jet(phi, omega, alpha))
+            rhs = -np.stack([np.broadcast_to(r.d2 if isinstance(r, Jet) else 0.0, phi.shape) for r in path], -1)
+            q_tt = np.linalg.solve(jac, rhs[..., None])[..., 0].T
+    return GenericSolution(q, q_t, q_tt, iterations, float(np.max(np.abs(residual))))
+
+
+def newton_history(constraints: Constraints, guess: ArrayLike, phi: ArrayLike,
+                   steps: int = 6) -> list[tuple[np.ndarray, float]]:
+    """Newton's iterations one by one, for teaching: ``[(q, largest |Φ|), …]`` from the guess on.
+
+    Parameters
+    ----------
+    constraints : callable
+        As for :func:`solve_constraints`.
+    guess : array_like, shape (k,)
+        The starting values of the unknowns.
+    phi : float
+        One crank angle (rad).
+    steps : int
+        How many iterations to make (no stopping test: watch the residual fall).
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    q = np.asarray(guess, dtype=float).reshape(-1, 1)
+    history = []
+    for _ in range(steps + 1):
+        residual, jac = _jacobian(constraints, q, phi)
+        history.append((q[:, 0].copy(), float(np.max(np.abs(residual)))))
+        q = q - np.linalg.solve(jac, residual[..., None])[..., 0].T
+    return history
+
+
+def solve_generic(mechanism: Mechanism, phi: ArrayLike, omega: ArrayLike = 1.0, alpha: ArrayLike = 0.0,
+                  order: int = 2, guess: ArrayLike | None = None,
+                  tol: float = 1e-13) -> GenericSolution:
+    """Solve a mechanism's own constraint equations with :func:`solve_constraints`.
+
+    The guess defaults to the closed-form solution at the first crank angle, continued from
+    there (so the same branch is followed), or pass ``guess`` of shape (k,) or (k, n).
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    if guess is None:
+        start = mechanism.solve(phi[:1], omega, alpha, order=0)
+        guess = np.array([c.value[0] for c in mechanism.coordinates(start)], dtype=float)
+    return solve_constraints(mechanism.constraints, guess, phi, omega, alpha, order, tol=tol)
