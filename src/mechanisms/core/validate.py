@@ -21,18 +21,22 @@ __all__ = [
     "require_finite_array",
     "require_branch",
     "require_order",
+    "require_pair",
+    "require_flag",
 ]
 
 
-def _number(name: str, value, requirement: str, positive: bool) -> float:
+def _number(name: str, value: object, requirement: str, positive: bool) -> float:
+    """``value`` as a float: a real number (Python's or numpy's, not a bool or a string), finite, > 0 if asked."""
+    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0 or np.iscomplexobj(value):
+        raise InvalidParameterError(name, value, requirement)
     try:
-        number = float(value)
-    except (TypeError, ValueError):
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError, OverflowError):
         raise InvalidParameterError(name, value, requirement) from None
     if not math.isfinite(number) or (positive and number <= 0.0):
         raise InvalidParameterError(name, value, requirement)
     return number
-
 
 
 def require_finite(name: str, value: object) -> float:
@@ -75,3 +79,29 @@ def require_order(value: object) -> int:
     if value in (0, 1, 2) and not isinstance(value, bool):
         return int(value)
     raise InvalidParameterError("order", value, "0 (positions), 1 (+ velocities) or 2 (+ accelerations)")
+
+
+def require_pair(name: str, value: object, unit: str = "m") -> tuple[float, float]:
+    """Return ``value`` as a pair of finite floats ``(x, y)`` (a point or a vector, in ``unit``), or raise.
+
+    A string is not a pair (``"12"`` would otherwise unpack to (1, 2)); a complex number is not
+    accepted either, so that a point is always written the same way, as two coordinates.
+    """
+    requirement = f"a pair (x, y) of finite numbers in {unit}"
+    if isinstance(value, (str, bytes)):
+        raise InvalidParameterError(name, value, requirement)
+    try:
+        x, y = value  # type: ignore[misc]
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, value, requirement) from None
+    return _number(f"{name}[0]", x, requirement, positive=False), _number(f"{name}[1]", y, requirement, positive=False)
+
+
+def require_flag(name: str, value: object) -> bool:
+    """Return ``value`` as bool if it is ``True`` or ``False`` (Python's or numpy's), or raise.
+
+    A string such as ``"False"`` is refused rather than taken as true.
+    """
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise InvalidParameterError(name, value, "True or False")
