@@ -13,8 +13,11 @@ lengths = st.floats(0.05, 5.0, **finite)
 angles = st.floats(-2 * np.pi, 2 * np.pi, **finite)
 """An angle, rad."""
 
-rates = st.floats(-50.0, 50.0, **finite)
-"""An angular velocity (rad/s) or acceleration (rad/s²)."""
+rates = st.one_of(st.just(0.0), st.floats(1e-3, 50.0, **finite).flatmap(lambda r: st.sampled_from([r, -r])))
+"""An angular velocity (rad/s) or acceleration (rad/s²): zero, or of a magnitude from 1e-3 to 50.
+
+Not a tiny non-zero number: tolerances scale with the rates, and a rate of 5e-324 (a subnormal)
+would make such a tolerance underflow to zero while the round-off of the other terms stays."""
 
 coordinates = st.floats(-3.0, 3.0, **finite)
 """A coordinate, m."""

@@ -1,4 +1,8 @@
-"""The built site in a real headless browser (Debian's Chromium driven by Playwright).
+"""The built site in a real headless browser (a Chromium-family browser driven by Playwright).
+
+The browser is found by ``tests/find_browser.py`` (``MECHANISMS_BROWSER``, then the usual names and
+paths on Linux and macOS, then Playwright's own Chromium); without one the test fails, saying what
+it looked for.
 
 Both editions of the site are tested: the full one in `_build/html` (built by `make book`) and
 the student edition without the exercises' solutions in `_build/student/_build/html` (built by
@@ -22,6 +26,8 @@ import threading
 
 import pytest
 
+from find_browser import BrowserNotFound, find_browser
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SITE = ROOT / "_build" / "html"
 SHOTS = ROOT / "_build" / "screenshots"
@@ -30,7 +36,6 @@ EDITIONS = {
     "full": (SITE, "make book", SHOTS),
     "student": (ROOT / "_build" / "student" / "_build" / "html", "make book-student", SHOTS / "student"),
 }
-CHROMIUM = pathlib.Path("/usr/bin/chromium")
 SKIPPED_DIRS = {"_static", "_sources", "_images", "mathjax", "_sphinx_design_static"}
 GENERATED = {"genindex.html", "search.html", "index.html"}  # Sphinx's own pages and the redirect
 # Console messages that are not errors of the book (none are needed today; keep each with a reason).
@@ -95,10 +100,17 @@ def server(servers):
 
 @pytest.fixture(scope="module")
 def browser():
-    playwright = pytest.importorskip("playwright.sync_api")
-    assert CHROMIUM.exists(), "Chromium is missing: `apt-get install chromium` (Debian package)"
+    try:
+        from playwright import sync_api as playwright
+    except ImportError:
+        pytest.fail("Playwright is missing: the site test drives a real browser through it; install the test "
+                    "extra (`.venv/bin/pip install -e '.[test]'`, which `make test` does)", pytrace=False)
+    try:
+        chromium = find_browser()
+    except BrowserNotFound as missing:
+        pytest.fail(str(missing), pytrace=False)
     with playwright.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=str(CHROMIUM), args=[
+        b = p.chromium.launch(executable_path=str(chromium), args=[
             "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
             "--disable-component-update", "--disable-sync"])
         yield b

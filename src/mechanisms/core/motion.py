@@ -303,7 +303,9 @@ def polar(vector: PointMotion) -> tuple[Motion, AngleMotion]:
     Returns
     -------
     length : Motion
-        ``L = |d|``, ``L_t = Re(d̄ d_t)/L``, ``L_tt = (Re(d̄ d_tt) + |d_t|² − L_t²)/L``.
+        ``L = |d|``, ``L_t = Re(d̄ d_t)/L``, ``L_tt = (Re(d̄ d_tt) + |d_t|² − L_t²)/L``, computed as
+        ``Re(d̄ d_tt)/L + L θ_t²`` (the same, since ``|d_t|² = L_t² + L²θ_t²``, without the cancellation of
+        ``|d_t|² − L_t²`` near the pivot).
     direction : AngleMotion
         ``θ = arg d``, ``θ_t = Im(d̄ d_t)/L²``, ``θ_tt = (Im(d̄ d_tt) − 2 L L_t θ_t)/L²``.
 
@@ -326,7 +328,8 @@ def polar(vector: PointMotion) -> tuple[Motion, AngleMotion]:
         if vector.order == 1:
             return Motion(length, length_t), AngleMotion(direction, direction_t)
         second = conj * vector.acceleration
-        length_tt = (second.real + np.abs(vector.velocity) ** 2 - length_t**2) / length
+        # (Re(d̄ d_tt) + |d_t|² − L_t²)/L with |d_t|² = L_t² + L²θ_t²: the form without cancellation
+        length_tt = second.real / length + length * direction_t**2
         direction_tt = (second.imag - 2.0 * length * length_t * direction_t) / length**2
     return (Motion(length, length_t, length_tt),
             AngleMotion(direction, direction_t, direction_tt))
