@@ -116,7 +116,8 @@ def test_all_names_the_public_api():
     for name in mech.__all__:
         assert getattr(mech, name) is not None, name
     for cls in mech.registry.values():
-        assert cls.__name__ in mech.__all__
+        if cls.__module__.startswith("mechanisms."):   # tests may register classes of their own
+            assert cls.__name__ in mech.__all__
 
 
 def _own_modules(cls: type) -> set[pathlib.Path]:
@@ -128,7 +129,7 @@ def _own_modules(cls: type) -> set[pathlib.Path]:
 def test_no_list_of_mechanisms_outside_their_own_modules():
     # the names of the registered classes used as names in code outside their own modules
     # (docstrings and comments may mention them: strings and comments are dropped first)
-    classes = list(mech.registry.values())
+    classes = [cls for cls in mech.registry.values() if cls.__module__.startswith("mechanisms.")]
     offenders = []
     for path in _modules():
         tree = ast.parse(path.read_text())

@@ -1,6 +1,6 @@
 """Layer 4: analysis of the crank-slider (chapter 3).
 
-The condition for a full crank revolution and the crank-angle range otherwise, the two dead-centre
+The transmission angle, the two dead-centre
 positions and the stroke, the time ratio of the offset mechanism, the extreme velocities and
 accelerations of the slider, and the approximate (series) slider formula of the textbooks.
 """
@@ -8,19 +8,23 @@ accelerations of the slider, and the approximate (series) slider formula of the 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .assignments import Quantity, Task, crank_speed, register_assignment, round_mm
+from ..core.angles import wrap_angle
+from ..linkages.base import Solution
 from ..linkages.crank_slider import CrankSlider
 from ..core.errors import AssemblyError, InvalidParameterError
 from ..core.validate import require_finite, require_finite_array
 from ..core.motion import Motion
 
 __all__ = [
-    "full_revolution",
-    "crank_angle_range",
+    "transmission_angle",
+    "transmission_min",
     "DeadCentres",
     "dead_centres",
     "stroke",
@@ -34,32 +38,51 @@ __all__ = [
 
 
 def full_revolution(mechanism: CrankSlider) -> bool:
-    """True if the crank turns a full revolution: L2 ≥ L1 + |e|.
-
-    Notes
-    -----
-    The crank pin is at most L1 + |e| from the guide (when the crank is perpendicular to the guide and
-    points away from it); the rod reaches the guide from there only if L2 ≥ L1 + |e|. With equality
-    the rod is perpendicular to the guide at that one position (a change point, see chapter 3).
-    """
-    return mechanism.rod >= mechanism.crank + abs(mechanism.offset)
+    """Deprecated: ``mechanism.full_turn()``, the one assembly-range API of every mechanism."""
+    warnings.warn("full_revolution(m) is deprecated: use m.full_turn()", DeprecationWarning, stacklevel=2)
+    return mechanism.full_turn()
 
 
 def crank_angle_range(mechanism: CrankSlider) -> list[tuple[float, float]] | None:
-    """Crank-angle intervals (rad) in which the mechanism assembles; ``None`` for a full revolution.
+    """Deprecated: ``mechanism.assembly_intervals()`` (which gives ``[(−π, π)]``, not ``None``, for a full turn)."""
+    warnings.warn("crank_angle_range(m) is deprecated: use m.assembly_intervals()", DeprecationWarning,
+                  stacklevel=2)
+    return None if mechanism.full_turn() else mechanism.assembly_intervals()
 
-    See :func:`mechanisms.crank_slider.assembly_ranges`: one interval if one side of the guide limits
-    the crank, two if both do (L2 < L1 − |e|).
+
+def transmission_angle(solution: Solution) -> np.ndarray:
+    """The transmission angle μ (rad) of a crank-slider whose guide is parallel to x, at each position.
+
+    μ is the angle between the rod A → B and the normal to the guide at B: ``μ = π/2 − |ψ|`` for
+    the coupler angle ψ wrapped to (−π/2, π/2] about the guide's direction (chapter 3). The slider
+    is driven best at μ = 90° (rod along the guide) and locks at μ = 0 (rod across it).
     """
-    return mechanism.assembly_ranges
+    psi = wrap_angle(solution.angle("coupler").value)
+    along = np.minimum(np.abs(psi), math.pi - np.abs(psi))     # the rod's angle with the guide's line
+    return 0.5 * math.pi - along
+
+
+def transmission_min(mechanism: CrankSlider) -> float:
+    """The smallest transmission angle μ (rad) of a crank-slider whose crank turns fully.
+
+    Notes
+    -----
+    μ = π/2 − |ψ| (ψ measured from the guide's direction); |ψ| is largest when the crank pin is
+    farthest from the guide, L1 + |e|, so ``sin |ψ|_max = (L1 + |e|)/L2`` (chapter 3), computed
+    here with atan2.
+    """
+    _require_full_revolution(mechanism, "the smallest transmission angle")
+    reach = mechanism.crank + abs(mechanism.offset)
+    psi_max = math.atan2(reach, math.sqrt((mechanism.rod - reach) * (mechanism.rod + reach)))
+    return 0.5 * math.pi - psi_max
 
 
 def _require_full_revolution(mechanism: CrankSlider, what: str) -> None:
-    if not full_revolution(mechanism):
+    if not mechanism.full_turn():
         raise AssemblyError(
             f"{what} is defined here for a crank that turns fully, which needs rod ≥ crank + |offset|: got rod = "
             f"{mechanism.rod:g} m, crank + |offset| = {mechanism.crank + abs(mechanism.offset):g} m; the crank "
-            "only rocks, between the ends of its assembly range (crank_angle_range)")
+            "only rocks, between the ends of its assembly intervals (assembly_intervals())")
 
 
 @dataclass(frozen=True)
@@ -150,9 +173,9 @@ def time_ratio(mechanism: CrankSlider, direction: int = 1) -> TimeRatio:
     the dead-centre angles by atan2).
     """
     if direction not in (1, -1):
-        raise ValueError(f"direction must be +1 (counter-clockwise) or -1: got {direction!r}")
+        raise InvalidParameterError("direction", direction, "+1 (counter-clockwise) or -1")
     centres = dead_centres(mechanism)
-    ccw = (centres.phi_outer - centres.phi_inner) % (2.0 * math.pi)
+    ccw = (centres.phi_outer - centres.phi_inner) % (2.0 * math.pi)   # the angle turned forward: [0, 2π), not a wrap
     outward = ccw if direction == 1 else 2.0 * math.pi - ccw
     back = 2.0 * math.pi - outward
     return TimeRatio(max(outward, back) / min(outward, back), outward, back, abs(outward - math.pi))
@@ -233,7 +256,7 @@ def slider_extremes(mechanism: CrankSlider, omega: float = 1.0, samples: int = 7
 
     best = _golden_extremes(pick, starts, signs, 2.0 * math.pi / samples)
     values = pick(best)
-    wrapped = (best + math.pi) % (2.0 * math.pi) - math.pi
+    wrapped = wrap_angle(best)
     return SliderExtremes(*(Extreme(float(p), float(f)) for p, f in zip(wrapped, values)))
 
 
@@ -272,3 +295,45 @@ def approximate_slider(mechanism: CrankSlider, phi: ArrayLike, omega: float = 1.
     v = -omega * l1 * (np.sin(phi) + b * np.cos(phi) * h / l2)
     a = -omega**2 * l1 * (np.cos(phi) + b * (l1 * np.cos(2.0 * phi) + e * np.sin(phi)) / l2)
     return Motion(s, v, a)
+
+
+# --- the crank-slider's assignment (python -m mechanisms assign crank-slider) ------------------------------------------------------------------------------------
+
+CRANK_SLIDER_MIN_TRANSMISSION_DEG = 45.0
+"""Smallest transmission angle μ of a crank-slider variant (degrees), see :func:`transmission_min`."""
+
+
+def _sample_crank_slider(rng: np.random.Generator) -> tuple[CrankSlider, float]:
+    crank = round_mm(rng.uniform(0.040, 0.120))
+    rod = round_mm(crank / rng.uniform(0.20, 0.35))         # λ = L1/L2 of engines and compressors
+    offset = 0.0 if rng.random() < 0.5 else round_mm(rng.choice([-1.0, 1.0]) * rng.uniform(0.05, 0.30) * crank)
+    return CrankSlider(crank=crank, rod=rod, offset=offset), crank_speed(rng, 50, 300)
+
+
+def _check_crank_slider(mechanism: CrankSlider) -> list[str]:
+    problems = []
+    if not (mechanism.full_turn() and mechanism.rod > mechanism.crank + abs(mechanism.offset)):
+        problems.append("the crank does not turn a full revolution (L2 > L1 + |e| is needed)")
+    elif math.degrees(transmission_min(mechanism)) < CRANK_SLIDER_MIN_TRANSMISSION_DEG:
+        problems.append("the smallest transmission angle is below "
+                        f"{CRANK_SLIDER_MIN_TRANSMISSION_DEG:g}°")
+    return problems
+
+
+def _data_crank_slider(m: CrankSlider) -> list[tuple[str, str, str, str]]:
+    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
+            ("L2", "coupler (connecting-rod) length |AB|", f"{m.rod:.3f}", "m"),
+            ("e", "offset: the guide is the line y = e", f"{m.offset:.3f}", "m"),
+            ("", "assembly", "the slider B to the right of the crank pin A (x_B > x_A)", "")]
+
+
+register_assignment(Task(
+    "crank-slider", "Crank-slider", _sample_crank_slider, _check_crank_slider, _data_crank_slider,
+    (Quantity("B.s", "x_B", "position of the slider B on its guide (its x coordinate)", "m"),
+     Quantity("B.v", "v_B", "velocity of the slider (positive towards +x)", "m/s"),
+     Quantity("B.a", "a_B", "acceleration of the slider (positive towards +x)", "m/s²"),
+     Quantity("coupler.omega", "ψ_t", "angular velocity of the coupler (positive counter-clockwise)", "1/s"),
+     Quantity("coupler.alpha", "ψ_tt", "angular acceleration of the coupler (positive counter-clockwise)",
+              "1/s²")),
+    f"the crank turns a full revolution (L2 > L1 + |e|) and the transmission angle, between the rod and the "
+    f"normal to the guide, never falls below {CRANK_SLIDER_MIN_TRANSMISSION_DEG:g}°; L1/L2 between 0.2 and 0.35"))

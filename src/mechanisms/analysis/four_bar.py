@@ -9,14 +9,17 @@ coupler and the rocker, 0 ≤ μ ≤ π.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
+from .assignments import Quantity, Task, crank_speed, register_assignment, round_mm
+from ..core.angles import wrap_angle
 from ..linkages.base import Solution
 from ..core.errors import AssemblyError
 from ..core.validate import require_length
-from ..linkages.four_bar import FourBar, assembly_intervals
+from ..linkages.four_bar import FourBar
 from ..core.motion import PointMotion
 
 __all__ = [
@@ -86,8 +89,9 @@ def grashof_class(crank: float, coupler: float, rocker: float, frame: float,
 
 
 def crank_range(mechanism: FourBar) -> list[tuple[float, float]]:
-    """Crank-angle intervals (rad) in which the four-bar assembles (analytic, chapter 4)."""
-    return assembly_intervals(mechanism.crank, mechanism.coupler, mechanism.rocker, mechanism.frame)
+    """Deprecated: ``mechanism.assembly_intervals()``, the one assembly-range API of every mechanism."""
+    warnings.warn("crank_range(m) is deprecated: use m.assembly_intervals()", DeprecationWarning, stacklevel=2)
+    return mechanism.assembly_intervals()
 
 
 @dataclass(frozen=True)
@@ -144,7 +148,7 @@ def limit_positions(mechanism: FourBar) -> LimitPositions:
         best = None
         for side in (1.0, -1.0):
             b = (foot + 1j * side * height) * c / d
-            phi = math.atan2(sign * b.imag, sign * b.real) % (2.0 * math.pi)
+            phi = math.atan2(sign * b.imag, sign * b.real) % (2.0 * math.pi)   # in [0, 2π), as documented
             solved = mechanism.solve(np.array([phi]), order=0).point("B").value[0]
             error = abs(solved - b)
             if best is None or error < best[0]:
@@ -152,9 +156,9 @@ def limit_positions(mechanism: FourBar) -> LimitPositions:
         found.append(best[1:])
     phi = np.array([f[0] for f in found])
     xi = np.array([f[1] for f in found])
-    forward = (phi[1] - phi[0]) % (2.0 * math.pi)
+    forward = (phi[1] - phi[0]) % (2.0 * math.pi)   # the angle turned forward: [0, 2π), not a wrap
     backward = 2.0 * math.pi - forward
-    swing = abs(math.remainder(xi[0] - xi[1], 2.0 * math.pi))
+    swing = abs(float(wrap_angle(xi[0] - xi[1])))
     return LimitPositions(phi, xi, swing, forward, backward, max(forward, backward) / min(forward, backward))
 
 
@@ -165,7 +169,7 @@ def transmission_angle(solution: Solution) -> np.ndarray:
     while μ stays away from 0 and π; 40°–140° is a common rule.
     """
     difference = solution.angle("coupler").value - solution.angle("rocker").value
-    return np.abs(np.angle(np.exp(1j * difference)))
+    return np.abs(wrap_angle(difference))
 
 
 def transmission_extremes(mechanism: FourBar) -> tuple[float, float]:
@@ -208,7 +212,7 @@ def coupler_curve(mechanism: FourBar, along: float, left: float = 0.0, positions
         of assembly the motion passes from one branch to the other). A crank with two
         separate intervals gives two closed curves, one after the other.
     """
-    intervals = crank_range(mechanism)
+    intervals = mechanism.assembly_intervals()
     if not intervals:
         raise AssemblyError("the four-bar assembles at no crank angle")
     pieces = []
@@ -300,3 +304,60 @@ def straight_part(phi: np.ndarray, points: np.ndarray, centre: int, tolerance: f
         raise ValueError(f"no straight part within {tolerance:g} m around sample {centre}")
     half, (point, direction, length, deviation) = best
     return StraightPart((float(phi[centre - half]), float(phi[centre + half])), length, deviation, point, direction)
+
+
+# --- the four-bar's assignment (python -m mechanisms assign four-bar) ---------------------------------------------------------------------------
+
+FOUR_BAR_TRANSMISSION_DEG = (35.0, 145.0)
+"""The transmission angle μ of a four-bar variant stays within these bounds (degrees)."""
+FOUR_BAR_GRASHOF_MARGIN = 0.02
+"""(p + q) − (s + l) of a four-bar variant is at least this fraction of the sum of the lengths."""
+
+
+def _sample_four_bar(rng: np.random.Generator) -> tuple[FourBar, float]:
+    d = rng.uniform(0.20, 0.40)
+    direction = math.radians(rng.uniform(-15.0, 15.0))
+    frame = (round_mm(d * math.cos(direction)), round_mm(d * math.sin(direction)))
+    crank = round_mm(rng.uniform(0.15, 0.35) * d)
+    coupler = round_mm(rng.uniform(0.70, 1.40) * d)
+    rocker = round_mm(rng.uniform(0.50, 1.20) * d)
+    branch = int(rng.choice([1, -1]))
+    return FourBar(crank=crank, coupler=coupler, rocker=rocker, frame=frame, branch=branch), crank_speed(rng, 20, 120)
+
+
+def _check_four_bar(mechanism: FourBar) -> list[str]:
+    problems = []
+    grashof = grashof_class(*mechanism.lengths)
+    if grashof.name != "crank-rocker":
+        problems.append(f"it is a {grashof.name}, not a crank-rocker")
+    elif grashof.margin < FOUR_BAR_GRASHOF_MARGIN * sum(mechanism.lengths):
+        problems.append("it is too close to a change-point linkage (Grashof margin)")
+    else:
+        low, high = (math.degrees(mu) for mu in transmission_extremes(mechanism))
+        if low < FOUR_BAR_TRANSMISSION_DEG[0] or high > FOUR_BAR_TRANSMISSION_DEG[1]:
+            problems.append(f"its transmission angle ranges over [{low:.1f}°, {high:.1f}°], outside "
+                            f"[{FOUR_BAR_TRANSMISSION_DEG[0]:g}°, {FOUR_BAR_TRANSMISSION_DEG[1]:g}°]")
+    return problems
+
+
+def _data_four_bar(m: FourBar) -> list[tuple[str, str, str, str]]:
+    side = "left" if m.branch == 1 else "right"
+    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
+            ("L2", "coupler length |AB|", f"{m.coupler:.3f}", "m"),
+            ("L3", "rocker length |CB|", f"{m.rocker:.3f}", "m"),
+            ("(a, b)", "rocker pivot C", f"({m.frame[0]:.3f}, {m.frame[1]:.3f})", "m"),
+            ("", "assembly (branch)", f"{m.branch:+d}: B to the {side} of the line from A to C", "")]
+
+
+register_assignment(Task(
+    "four-bar", "Crank-rocker four-bar", _sample_four_bar, _check_four_bar, _data_four_bar,
+    (Quantity("coupler.angle_deg", "ψ", "coupler angle, of the vector A→B from +x, counter-clockwise", "°"),
+     Quantity("rocker.angle_deg", "ξ", "rocker angle, of the vector C→B from +x, counter-clockwise", "°"),
+     Quantity("coupler.omega", "ψ_t", "angular velocity of the coupler (positive counter-clockwise)", "1/s"),
+     Quantity("rocker.omega", "ξ_t", "angular velocity of the rocker (positive counter-clockwise)", "1/s"),
+     Quantity("coupler.alpha", "ψ_tt", "angular acceleration of the coupler", "1/s²"),
+     Quantity("rocker.alpha", "ξ_tt", "angular acceleration of the rocker", "1/s²")),
+    "Grashof's condition holds with the crank the shortest link (a crank-rocker), at least "
+    f"{100 * FOUR_BAR_GRASHOF_MARGIN:g} % of the sum of the lengths away from a change point, and the "
+    f"transmission angle stays between {FOUR_BAR_TRANSMISSION_DEG[0]:g}° and {FOUR_BAR_TRANSMISSION_DEG[1]:g}° "
+    "over the whole revolution"))

@@ -30,10 +30,9 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from ..linkages.base import Solution
-from ..linkages.crank_slider import CrankSlider
+from ..linkages.base import Mechanism, Solution
 from ..core.errors import InvalidParameterError, MechanismError
-from ..linkages.four_bar import FourBar
+from ..linkages.groups import RRP, RRR, Crank
 from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, body_angle, body_point, centre_of_mass,
                      load_values)
 
@@ -169,15 +168,16 @@ def _check_masses(masses: Mapping[str, LinkMass], bodies: dict[str, bool], mecha
                 "masses", body, f"one of the bodies {', '.join(bodies)} of {type(mechanism).__name__}")
 
 
-def joint_forces(mechanism: CrankSlider | FourBar, solution: Solution, masses: Mapping[str, LinkMass],
+def joint_forces(mechanism: Mechanism, solution: Solution, masses: Mapping[str, LinkMass],
                  loads: Sequence[Force | Torque] = (), gravity: float = STANDARD_GRAVITY,
                  springs: Sequence[Spring] = ()) -> JointForces:
     """Joint forces and the driving torque of a crank-slider or a four-bar by Newton–Euler.
 
     Parameters
     ----------
-    mechanism : CrankSlider or FourBar
-        The mechanism (its structure decides the equations).
+    mechanism : Mechanism
+        A crank-slider or a four-bar: a crank and one RRR or RRP group (``groups()``), which decide
+        the equations.
     solution : Solution
         Its kinematics of order 2 for the crank motion (φ, φ_t, φ_tt).
     masses : mapping
@@ -206,42 +206,49 @@ def joint_forces(mechanism: CrankSlider | FourBar, solution: Solution, masses: M
     if solution.order < 2:
         raise MechanismError(f"joint forces need accelerations: solve with order=2 (got order={solution.order})")
     phi = solution.phi
-    if isinstance(mechanism, CrankSlider):
-        bodies = {"crank": True, "coupler": True, "B": False}
+    groups = mechanism.groups()
+    if len(groups) != 2 or not isinstance(groups[0], Crank) or not isinstance(groups[1], (RRR, RRP)):
+        raise InvalidParameterError("mechanism", type(mechanism).__name__,
+                                    "a crank and one RRR or RRP group, a four-bar or a crank-slider "
+                                    "(kinetostatics is written for these two)")
+    crank, dyad = groups
+    O, A, B = (solution.point(n).value for n in (crank.pivot, crank.pin, dyad.joint))
+    if isinstance(dyad, RRP):
+        # the slider is a body of its own, named by its joint; it translates along the guide
+        coupler, slider = dyad.link, dyad.joint
+        bodies = {crank.link: True, coupler: True, slider: False}
         _check_masses(masses, bodies, mechanism)
         system = _System(solution, bodies, 8, masses)
-        O, A, B = (solution.point(n).value for n in "OAB")
-        system.unknown_force("crank", 0, O, +1.0)      # R_O: frame on crank
-        system.unknown_force("crank", 2, A, -1.0)      # R_A: crank on coupler
-        system.unknown_force("coupler", 2, A, +1.0)
-        system.unknown_force("coupler", 4, B, -1.0)    # R_B: coupler on slider
-        system.unknown_force("B", 4, B, +1.0)
-        system.unknown_normal("B", 6, 1j)              # N: guide (y = e) on slider, along +y
-        system.unknown_torque("crank", 7)              # M_d: frame on crank
+        system.unknown_force(crank.link, 0, O, +1.0)        # R_O: frame on crank
+        system.unknown_force(crank.link, 2, A, -1.0)        # R_A: crank on coupler
+        system.unknown_force(coupler, 2, A, +1.0)
+        system.unknown_force(coupler, 4, B, -1.0)           # R_B: coupler on slider
+        system.unknown_force(slider, 4, B, +1.0)
+        normal = 1j * dyad.guide_direction
+        system.unknown_normal(slider, 6, normal)            # N: guide on slider, across the guide
+        system.unknown_torque(crank.link, 7)                # M_d: frame on crank
         system.applied(masses, loads, gravity, springs)
         u = system.solve()
-        forces = {"O": u[:, 0] + 1j * u[:, 1], "A": u[:, 2] + 1j * u[:, 3], "B": u[:, 4] + 1j * u[:, 5],
-                  "guide": 1j * u[:, 6]}
+        forces = {crank.pivot: u[:, 0] + 1j * u[:, 1], crank.pin: u[:, 2] + 1j * u[:, 3],
+                  dyad.joint: u[:, 4] + 1j * u[:, 5], "guide": normal * u[:, 6]}
         torque = u[:, 7]
-    elif isinstance(mechanism, FourBar):
-        bodies = {"crank": True, "coupler": True, "rocker": True}
+    else:
+        C = solution.point(dyad.second).value
+        coupler, rocker = dyad.first_link, dyad.second_link
+        bodies = {crank.link: True, coupler: True, rocker: True}
         _check_masses(masses, bodies, mechanism)
         system = _System(solution, bodies, 9, masses)
-        O, A, B, C = (solution.point(n).value for n in "OABC")
-        system.unknown_force("crank", 0, O, +1.0)      # R_O: frame on crank
-        system.unknown_force("crank", 2, A, -1.0)      # R_A: crank on coupler
-        system.unknown_force("coupler", 2, A, +1.0)
-        system.unknown_force("coupler", 4, B, -1.0)    # R_B: coupler on rocker
-        system.unknown_force("rocker", 4, B, +1.0)
-        system.unknown_force("rocker", 6, C, +1.0)     # R_C: frame on rocker
-        system.unknown_torque("crank", 8)              # M_d: frame on crank
+        system.unknown_force(crank.link, 0, O, +1.0)        # R_O: frame on crank
+        system.unknown_force(crank.link, 2, A, -1.0)        # R_A: crank on coupler
+        system.unknown_force(coupler, 2, A, +1.0)
+        system.unknown_force(coupler, 4, B, -1.0)           # R_B: coupler on rocker
+        system.unknown_force(rocker, 4, B, +1.0)
+        system.unknown_force(rocker, 6, C, +1.0)            # R_C: frame on rocker
+        system.unknown_torque(crank.link, 8)                # M_d: frame on crank
         system.applied(masses, loads, gravity, springs)
         u = system.solve()
-        forces = {"O": u[:, 0] + 1j * u[:, 1], "A": u[:, 2] + 1j * u[:, 3], "B": u[:, 4] + 1j * u[:, 5],
-                  "C": u[:, 6] + 1j * u[:, 7]}
+        forces = {crank.pivot: u[:, 0] + 1j * u[:, 1], crank.pin: u[:, 2] + 1j * u[:, 3],
+                  dyad.joint: u[:, 4] + 1j * u[:, 5], dyad.second: u[:, 6] + 1j * u[:, 7]}
         torque = u[:, 8]
-    else:
-        raise InvalidParameterError("mechanism", type(mechanism).__name__,
-                                    "a CrankSlider or a FourBar (kinetostatics is written for these two)")
     shape = np.shape(phi)
     return JointForces({k: v.reshape(shape) for k, v in forces.items()}, torque.reshape(shape))

@@ -33,10 +33,8 @@ from typing import Mapping, Sequence
 
 
 from ..linkages.base import Mechanism, Solution
-from ..linkages.crank_slider import CrankSlider
 from ..core.errors import InvalidParameterError, MechanismError
-from ..linkages.four_bar import FourBar
-from ..linkages.slotted import Shaper, SlottedLever
+from ..linkages.groups import RPR, RRP, RRR, Crank, LinkPoint, link_numbers
 
 __all__ = [
     "PlanVector",
@@ -53,18 +51,10 @@ __all__ = [
     "instant_centres",
     "kennedy_deviation",
     "velocities_from_centre",
-    "LINK_NUMBERS",
 ]
 
 NICE_STEPS = (1.0, 2.0, 2.5, 4.0, 5.0)
 """The mantissas of the scales a course allows: 1, 2, 2.5, 4, 5 × 10ᵏ."""
-
-LINK_NUMBERS = {
-    "crank-slider": {"frame": 0, "crank": 1, "coupler": 2, "slider": 3},
-    "four-bar": {"frame": 0, "crank": 1, "coupler": 2, "rocker": 3},
-}
-"""The numbers of the links in the names of the instant centres P_ij (frame 0, crank 1 …)."""
-
 
 class PlanError(MechanismError):
     """A plan cannot be built at this position: two of its lines are parallel (a dead centre)."""
@@ -408,25 +398,27 @@ def _check_extra(extra, allowed: Sequence[str]) -> None:
                                         + ", ".join(allowed))
 
 
-def _crank(b: _Builder, where, omega1: float, alpha1: float) -> None:
+def _crank(b: _Builder, where, crank: Crank, omega1: float, alpha1: float) -> None:
     """The crank pin A: ``v_A = iω₁(A − O)``; ``a_A = a^n_A + a^t_A`` with ``a^n_A = −ω₁²(A − O)``."""
-    arm = where["A"] - where["O"]
-    b.vertex(b.pole, 0j, "O")
+    pin, link = crank.pin, crank.link
+    arm = where[pin] - where[crank.pivot]
+    b.vertex(b.pole, 0j, crank.pivot)
+    label = pin.lower()
     if b.quantity == "velocity":
-        b.vertex("a", 1j * omega1 * arm, "A")
-        b.absolute("A", "a", "crank")
-        b.rates["crank"] = omega1
+        b.vertex(label, 1j * omega1 * arm, pin)
+        b.absolute(pin, label, link)
+        b.rates[link] = omega1
         return
     normal, tangential = -omega1**2 * arm, 1j * alpha1 * arm
     if alpha1 != 0.0:
         b.vertex("n1", normal)
-        b.vector("a^n_A", b.pole, "n1", "normal", "crank", normal)
-        b.vector("a^t_A", "n1", "a′", "tangential", "crank", tangential)
-    b.vertex("a′", normal + tangential, "A")
-    b.absolute("A", "a′", "crank")
+        b.vector(f"a^n_{pin}", b.pole, "n1", "normal", link, normal)
+        b.vector(f"a^t_{pin}", "n1", label + "′", "tangential", link, tangential)
+    b.vertex(label + "′", normal + tangential, pin)
+    b.absolute(pin, label + "′", link)
     if alpha1 != 0.0:
-        b.equations.append((("a_A",), ("a^n_A", "a^t_A")))
-    b.rates["crank"] = alpha1
+        b.equations.append(((f"a_{pin}",), (f"a^n_{pin}", f"a^t_{pin}")))
+    b.rates[link] = alpha1
 
 
 def _rate(relative: complex, arm: complex) -> float:
@@ -494,40 +486,43 @@ def _two_hinges(b: _Builder, where, first: str, first_label: str, pivot: str, pi
     b.rates[rocker] = _rate(t2 * 1j * arm2, arm2)
 
 
-def _block_on_lever(b: _Builder, where, velocity: Plan | None) -> None:
+def _block_on_lever(b: _Builder, where, group: RPR, on_lever: str, velocity: Plan | None) -> None:
     """The lever's point A3 under the block A2 (on the crank pin): ``v_A3 = v_A2 + v_A3A2``, v_A3 ⊥ CA.
 
     Accelerations: ``a_A3 = a_A2 + a^k_A3A2 + a^r_A3A2 = a^n_A3C + a^t_A3C`` with the Coriolis term
     ``a^k_A3A2 = 2ω₃ × v_A3A2`` (the block turns with the lever) and ``a^n_A3C = −ω₃²(A − C)``.
     """
-    arm = where["A"] - where["C"]
+    low = on_lever.lower()
+    block2 = group.block + "2"     # the block (link 2) at A: A2
+    arm = where[group.block] - where[group.pivot]
     along = arm / abs(arm)
-    b.vertex(b.pole, 0j, "C")
+    b.vertex(b.pole, 0j, group.pivot)
     if b.quantity == "velocity":
-        a = b.vertices["a"]
+        a = b.vertices[b.points[group.block]]
         point, t1, t2 = meet(0j, 1j * arm, a, along)
-        b.vertex("a3", point, "A3")
-        b.vector("v_A3A2", "a", "a3", "sliding", "slider", t2 * along)
-        b.absolute("A3", "a3", "lever", t1 * 1j * arm)
-        b.equations.append((("v_A3",), ("v_A", "v_A3A2")))
-        b.rates["lever"] = _rate(t1 * 1j * arm, arm)
+        b.vertex(low, point, on_lever)
+        b.vector(f"v_{on_lever}{block2}", b.points[group.block], low, "sliding", group.slider, t2 * along)
+        b.absolute(on_lever, low, group.lever, t1 * 1j * arm)
+        b.equations.append(((f"v_{on_lever}",), (f"v_{group.block}", f"v_{on_lever}{block2}")))
+        b.rates[group.lever] = _rate(t1 * 1j * arm, arm)
         return
-    omega3 = velocity.rates["lever"]
-    sliding = velocity.vector("v_A3A2").value
+    omega3 = velocity.rates[group.lever]
+    sliding = velocity.vector(f"v_{on_lever}{block2}").value
     coriolis = 2.0 * 1j * omega3 * sliding
-    k = b.vertex("k", b.vertices["a′"] + coriolis)
+    k = b.vertex("k", b.vertices[b.points[group.block]] + coriolis)
     normal = -omega3**2 * arm
     n3 = b.vertex("n3", normal)
     point, t1, t2 = meet(k, along, n3, 1j * arm)
-    b.vertex("a3′", point, "A3")
-    b.vector("a^k_A3A2", "a′", "k", "coriolis", "slider", coriolis)
-    b.vector("a^r_A3A2", "k", "a3′", "sliding", "slider", t1 * along)
-    b.vector("a^n_A3C", b.pole, "n3", "normal", "lever", normal)
-    b.vector("a^t_A3C", "n3", "a3′", "tangential", "lever", t2 * 1j * arm)
-    b.absolute("A3", "a3′", "lever")
-    b.equations.append((("a_A", "a^k_A3A2", "a^r_A3A2"), ("a^n_A3C", "a^t_A3C")))
-    b.equations.append((("a_A3",), ("a^n_A3C", "a^t_A3C")))
-    b.rates["lever"] = _rate(t2 * 1j * arm, arm)
+    b.vertex(low + "′", point, on_lever)
+    b.vector(f"a^k_{on_lever}{block2}", b.points[group.block], "k", "coriolis", group.slider, coriolis)
+    b.vector(f"a^r_{on_lever}{block2}", "k", low + "′", "sliding", group.slider, t1 * along)
+    b.vector(f"a^n_{on_lever}{group.pivot}", b.pole, "n3", "normal", group.lever, normal)
+    b.vector(f"a^t_{on_lever}{group.pivot}", "n3", low + "′", "tangential", group.lever, t2 * 1j * arm)
+    b.absolute(on_lever, low + "′", group.lever)
+    transport = (f"a^n_{on_lever}{group.pivot}", f"a^t_{on_lever}{group.pivot}")
+    b.equations.append(((f"a_{group.block}", f"a^k_{on_lever}{block2}", f"a^r_{on_lever}{block2}"), transport))
+    b.equations.append(((f"a_{on_lever}",), transport))
+    b.rates[group.lever] = _rate(t2 * 1j * arm, arm)
 
 
 def _add_images(b: _Builder, where, link_points: Mapping[str, tuple[str, str]],
@@ -563,39 +558,47 @@ def _build(mechanism: Mechanism, solution: Solution, index: int, quantity: str, 
     prime = "" if quantity == "velocity" else "′"
     cls = VelocityPlan if quantity == "velocity" else AccelerationPlan
 
-    if isinstance(mechanism, CrankSlider):
-        _check_extra(points, ("crank", "coupler"))
-        where = _positions(mechanism, solution, index, points)
-        _crank(b, where, omega1, alpha1)
-        _hinge_on_guide(b, where, "A", "a" + prime, "B", "b" + prime, "coupler", "slider", 1.0 + 0j, velocity, 2)
-        links = {"crank": ("O", "A"), "coupler": ("A", "B")}
-    elif isinstance(mechanism, FourBar):
-        _check_extra(points, ("crank", "coupler", "rocker"))
-        where = _positions(mechanism, solution, index, points)
-        _crank(b, where, omega1, alpha1)
-        b.vertex(b.pole, 0j, "C")
-        _two_hinges(b, where, "A", "a" + prime, "C", b.pole, "B", "b" + prime, "coupler", "rocker", velocity)
-        links = {"crank": ("O", "A"), "coupler": ("A", "B"), "rocker": ("C", "B")}
-    elif isinstance(mechanism, (Shaper, SlottedLever)):
-        shaper = isinstance(mechanism, Shaper)
-        _check_extra(points, ("crank", "lever", "rod") if shaper else ("crank", "lever"))
-        where = _positions(mechanism, solution, index, points)
-        where["A3"] = where["A"]
-        _crank(b, where, omega1, alpha1)
-        _block_on_lever(b, where, velocity)
-        lever_end = image(0j, b.vertices["a3" + prime], where["C"], where["A3"], where["B"])
-        b.vertex("b" + prime, lever_end, "B")
-        b.absolute("B", "b" + prime, "lever")
-        links = {"crank": ("O", "A"), "lever": ("C", "A3")}
-        if shaper:
-            _hinge_on_guide(b, where, "B", "b" + prime, "D", "d" + prime, "rod", "slider", 1.0 + 0j, velocity, 4)
-            links["rod"] = ("B", "D")
-    else:
+    groups = mechanism.groups()
+    if not groups or not isinstance(groups[0], Crank):
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
-                                    "a CrankSlider, FourBar, SlottedLever or Shaper (the plans of chapter 9)")
+                                    "a mechanism that describes its structure, crank first (Mechanism.groups())")
+    numbers = link_numbers(groups)
+    _check_extra(points, tuple(link for group in groups for link in group.links if link != "slider"))
+    where = _positions(mechanism, solution, index, points)
+    links: dict[str, tuple[str, str]] = {}
+    for group in groups:
+        if isinstance(group, Crank):
+            _crank(b, where, group, omega1, alpha1)
+            links[group.link] = (group.pivot, group.pin)
+        elif isinstance(group, RRR):
+            b.vertex(b.pole, 0j, group.second)
+            _two_hinges(b, where, group.first, b.points[group.first], group.second, b.pole, group.joint,
+                        group.joint.lower() + prime, group.first_link, group.second_link, velocity)
+            links[group.first_link] = (group.first, group.joint)
+            links[group.second_link] = (group.second, group.joint)
+        elif isinstance(group, RRP):
+            _hinge_on_guide(b, where, group.known, b.points[group.known], group.joint, group.joint.lower() + prime,
+                            group.link, group.slider, group.guide_direction, velocity, numbers[group.link])
+            links[group.link] = (group.known, group.joint)
+        elif isinstance(group, RPR):
+            on_lever = group.block + "3"     # the lever's point under the block (A3 under A2)
+            where[on_lever] = where[group.block]
+            _block_on_lever(b, where, group, on_lever, velocity)
+            links[group.lever] = (group.pivot, on_lever)
+        elif isinstance(group, LinkPoint):
+            first, second = links[group.link]
+            label = group.name.lower() + prime
+            b.vertex(label, image(b.vertices[b.points[first]], b.vertices[b.points[second]], where[first],
+                                  where[second], where[group.name]), group.name)
+            b.absolute(group.name, label, group.link)
+        else:
+            raise InvalidParameterError("mechanism", type(mechanism).__name__,
+                                        f"groups the plans can draw (crank, RRR, RRP, RPR): not {group!r}")
     _add_images(b, where, links, points, prime)
-    if "lever" in b.images:  # the lever's image holds its end B too
-        b.images["lever"] = b.images["lever"][:2] + ("B",) + b.images["lever"][2:]
+    for group in groups:   # a link's image holds the joints fixed to it (the lever's end B)
+        if isinstance(group, LinkPoint) and group.link in b.images:
+            image_points = b.images[group.link]
+            b.images[group.link] = image_points[:2] + (group.name,) + image_points[2:]
     return b.finish(cls, phi, scale, where)
 
 
@@ -606,7 +609,9 @@ def velocity_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
 
     Parameters
     ----------
-    mechanism : CrankSlider, FourBar, SlottedLever or Shaper
+    mechanism : Mechanism
+        One that describes its structure (``groups()``): a crank, then RRR, RRP and RPR groups and
+        points fixed to links (the crank-slider, the four-bar, the slotted lever, the shaper).
         The mechanism (chapters 3, 4, 5).
     solution : Solution
         Its solution, order ≥ 1; only the joint positions and the crank's ω₁ are used.
@@ -740,7 +745,8 @@ def instant_centres(mechanism: Mechanism, solution: Solution, index: int = 0) ->
 
     Parameters
     ----------
-    mechanism : FourBar or CrankSlider
+    mechanism : Mechanism
+        A crank and one RRR or RRP group (``groups()``): a four-bar or a crank-slider.
     solution : Solution
         Positions are enough (order 0).
     index : int
@@ -760,16 +766,20 @@ def instant_centres(mechanism: Mechanism, solution: Solution, index: int = 0) ->
     rocker are parallel: the coupler translates for an instant, ω₂ = 0).
     """
     where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
-    finite: dict[tuple[int, int], complex] = {(0, 1): where["O"], (1, 2): where["A"], (2, 3): where["B"]}
+    groups = mechanism.groups()
+    if len(groups) != 2 or not isinstance(groups[0], Crank) or not isinstance(groups[1], (RRR, RRP)):
+        raise InvalidParameterError("mechanism", type(mechanism).__name__,
+                                    "a four-link mechanism: a crank and one RRR or RRP group (a four-bar or a "
+                                    "crank-slider)")
+    crank, dyad = groups
+    links = link_numbers(groups)
+    finite: dict[tuple[int, int], complex] = {(0, 1): where[crank.pivot], (1, 2): where[crank.pin],
+                                              (2, 3): where[dyad.joint]}
     infinite: dict[tuple[int, int], complex] = {}
-    if isinstance(mechanism, FourBar):
-        links = dict(LINK_NUMBERS["four-bar"])
-        finite[(0, 3)] = where["C"]
-    elif isinstance(mechanism, CrankSlider):
-        links = dict(LINK_NUMBERS["crank-slider"])
-        infinite[(0, 3)] = 1j  # the guide is along x: the slider's centre lies at infinity along y
-    else:
-        raise InvalidParameterError("mechanism", type(mechanism).__name__, "a FourBar or a CrankSlider")
+    if isinstance(dyad, RRR):
+        finite[(0, 3)] = where[dyad.second]
+    else:  # the slider's centre lies at infinity, perpendicular to its guide
+        infinite[(0, 3)] = 1j * dyad.guide_direction
 
     def line(pair_a, pair_b):
         """The line through two centres (one of them may be at infinity): (point, direction)."""

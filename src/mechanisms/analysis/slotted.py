@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .assignments import Quantity, Task, crank_speed, register_assignment, round_mm
 from ..core.errors import InvalidParameterError
 from ..core.validate import require_length
 from ..linkages.slotted import Shaper, SlottedLever
@@ -91,7 +92,7 @@ def limit_positions(mechanism: SlottedLever | Shaper) -> LimitPositions:
     r, d = mechanism.crank, abs(pivot)
     beta = half_swing(r, d)
     gamma = math.atan2(pivot.imag, pivot.real)
-    first = (gamma + 0.5 * math.pi - beta) % (2.0 * math.pi)
+    first = (gamma + 0.5 * math.pi - beta) % (2.0 * math.pi)    # crank angles in [0, 2π), as documented
     second = (gamma - 0.5 * math.pi + beta) % (2.0 * math.pi)
     lever = tuple(float(np.angle(r * np.exp(1j * phi) - pivot)) for phi in (first, second))
     return LimitPositions((first, second), lever, beta, time_ratio(r, d))
@@ -135,3 +136,46 @@ def shaper_stroke(shaper: Shaper) -> ShaperStroke:
         dy = b.imag - shaper.ram_height
         xs.append(b.real + shaper.branch * math.sqrt((shaper.rod - dy) * (shaper.rod + dy)))
     return ShaperStroke((xs[0], xs[1]), abs(xs[0] - xs[1]), limits.time_ratio)
+
+
+# --- the slotted lever's assignment (python -m mechanisms assign slotted-lever) -------------------------------------------------------------------------------------
+
+SLOTTED_MIN_PIVOT_RATIO = 1.3
+"""The lever's pivot is at least this many crank radii from the crank's centre (oscillating lever)."""
+
+
+def _sample_slotted_lever(rng: np.random.Generator) -> tuple[SlottedLever, float]:
+    crank = round_mm(rng.uniform(0.050, 0.150))
+    distance = rng.uniform(1.4, 2.5) * crank
+    direction = math.radians(rng.uniform(-110.0, -70.0))   # the pivot below the crank, as in a shaper
+    pivot = (round_mm(distance * math.cos(direction)), round_mm(distance * math.sin(direction)))
+    return SlottedLever(crank=crank, pivot=pivot), crank_speed(rng, 10, 60)
+
+
+def _check_slotted_lever(mechanism: SlottedLever) -> list[str]:
+    if mechanism.kind != "oscillating" or mechanism.pivot_distance < SLOTTED_MIN_PIVOT_RATIO * mechanism.crank:
+        return [f"the pivot is closer than {SLOTTED_MIN_PIVOT_RATIO:g} crank radii: the lever would swing too far "
+                "or rotate"]
+    return []
+
+
+def _data_slotted_lever(m: SlottedLever) -> list[tuple[str, str, str, str]]:
+    return [("r", "crank radius |OA| (the block is on the crank pin A)", f"{m.crank:.3f}", "m"),
+            ("(a, b)", "the lever's fixed pivot C", f"({m.pivot[0]:.3f}, {m.pivot[1]:.3f})", "m"),
+            ("K", "time ratio of the lever (for reference)",
+             f"{time_ratio(m.crank, m.pivot_distance):.3f}", "")]
+
+
+register_assignment(Task(
+    "slotted-lever", "Crank with an oscillating slotted lever", _sample_slotted_lever, _check_slotted_lever,
+    _data_slotted_lever,
+    (Quantity("lever.angle_deg", "ξ", "lever angle, of the vector C→A from +x, counter-clockwise", "°"),
+     Quantity("lever.omega", "ξ_t", "angular velocity of the lever (positive counter-clockwise)", "1/s"),
+     Quantity("lever.alpha", "ξ_tt", "angular acceleration of the lever", "1/s²"),
+     Quantity("A.s", "L_tek", "distance from the pivot C to the block A", "m"),
+     Quantity("A.v", "v_rel", "sliding velocity of the block along the lever (positive away from C)", "m/s"),
+     Quantity("A.a", "a_rel", "relative acceleration of the block along the lever (positive away from C)",
+              "m/s²"),
+     Quantity("A.coriolis", "a_cor", "Coriolis acceleration 2 ξ_t v_rel (positive towards the lever's left)",
+              "m/s²")),
+    f"the lever oscillates, its pivot at least {SLOTTED_MIN_PIVOT_RATIO:g} crank radii from the crank's centre"))

@@ -36,12 +36,11 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..linkages.base import Mechanism, Solution
-from ..linkages.crank_slider import CrankSlider
+from ..core.motion import AngleMotion
+from ..linkages.base import Mechanism, Solution, registry
 from ..core.errors import DeadCentreWarning
 from ..linkages.four_bar import FourBar
 from ..verify.jet import Jet
-from ..linkages.slotted import SlottedLever
 from ..verify import central_difference, solve_constraints
 
 __all__ = [
@@ -74,15 +73,13 @@ OMEGA = 1.0
 
 
 def benchmark_mechanisms() -> dict[str, Mechanism]:
-    """The three mechanisms of the benchmark, by their command-line names.
+    """The mechanisms of the benchmark (those that set ``benchmark``), at their examples, by command-line name.
 
     The four-bar is the peers' one: frame |OC| = 4, crank 1, coupler 3.5, rocker 3 (a
     crank-rocker). The crank-slider has crank 1, rod 3.5 and offset 0.5; the slotted lever
     crank 1 and the lever's pivot at (0, 2) (oscillating).
     """
-    return {"crank-slider": CrankSlider(crank=1.0, rod=3.5, offset=0.5),
-            "four-bar": FourBar(crank=1.0, coupler=3.5, rocker=3.0, frame=(4.0, 0.0), branch=1),
-            "slotted-lever": SlottedLever(crank=1.0, pivot=(0.0, 2.0))}
+    return {name: cls.example() for name, cls in registry.items() if cls.benchmark}
 
 
 # --- the reference ------------------------------------------------------------------------------
@@ -217,11 +214,12 @@ def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarra
     return tuple(out)
 
 
-def _angle_rows(mechanism: Mechanism) -> tuple[bool, bool]:
-    """Which of the two coordinates are angles (the others are lengths)."""
-    if isinstance(mechanism, FourBar):
-        return True, True
-    return True, False   # crank-slider (ψ, s), slotted lever (ξ, L)
+def _angle_rows(mechanism: Mechanism) -> tuple[bool, ...]:
+    """Which of the coordinates are angles (the others are lengths), from a solution at one crank angle."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeadCentreWarning)
+        sample = mechanism.solve(np.array([0.5]), order=0)
+    return tuple(isinstance(c, AngleMotion) for c in mechanism.coordinates(sample))
 
 
 def _coordinates(mechanism: Mechanism, solution: Solution, order: int):

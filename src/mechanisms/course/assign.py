@@ -32,14 +32,13 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..analysis.crank_slider import full_revolution
-from ..analysis.four_bar import grashof_class, transmission_extremes
-from ..analysis.slotted import time_ratio as slotted_time_ratio
-from ..linkages.base import Mechanism, Solution
-from ..linkages.crank_slider import CrankSlider
+from ..analysis.assignments import Quantity, Task, assignments
 from ..core.errors import DeadCentreWarning, InvalidParameterError, MechanismError
-from ..linkages.four_bar import FourBar
-from ..linkages.slotted import SlottedLever
+from ..linkages.base import Mechanism, Solution
+
+TASKS = assignments()
+"""The mechanisms an assignment can be set on, by command-line name (registered by each mechanism's
+analysis module: :func:`mechanisms.analysis.assignments.register_assignment`)."""
 
 __all__ = [
     "Quantity",
@@ -61,27 +60,6 @@ KEY_COLUMNS = ("student", "position", "phi_deg")
 
 STEP_DEG = 15
 """The crank positions of a variant are multiples of this angle (degrees)."""
-
-
-@dataclass(frozen=True)
-class Quantity:
-    """A quantity a student computes, named as the ``table`` command's CSV column.
-
-    Attributes
-    ----------
-    column : str
-        ``NAME.KEY``, e.g. ``"coupler.omega"`` or ``"B.v"``.
-    symbol : str
-        The book's symbol (``"ω₂"``), for the sheet.
-    meaning : str
-        In words, with the sign convention.
-    unit : str
-    """
-
-    column: str
-    symbol: str
-    meaning: str
-    unit: str
 
 
 @dataclass(frozen=True)
@@ -112,206 +90,11 @@ class Variant:
         """The variant as plain data (for ``variants.json``)."""
         parameters = {name: (list(value) if isinstance(value, tuple) else value)
                       for name, value in self.mechanism.parameters().items()}
-        if isinstance(self.mechanism, CrankSlider):
-            parameters["branch"] = self.mechanism.branch
+        branch = getattr(self.mechanism, "branch", None)
+        if "branch" not in parameters and branch is not None:   # an assembly the command line does not ask
+            parameters["branch"] = branch
         return {"student": self.student, "mechanism": self.mechanism.cli_name, "parameters": parameters,
                 "omega": self.omega, "positions_deg": list(self.positions_deg)}
-
-
-@dataclass(frozen=True)
-class Task:
-    """What an assignment on one mechanism asks and how its variants are drawn.
-
-    Attributes
-    ----------
-    name : str
-        The mechanism's command-line name.
-    title : str
-        For the sheet's heading.
-    sample : callable
-        ``sample(rng) -> (mechanism, omega)``: a candidate variant from a numpy Generator.
-    check : callable
-        ``check(mechanism) -> list of str``: why the candidate is not a good variant (empty: good).
-    data : callable
-        ``data(mechanism) -> list of (symbol, meaning, value, unit)``: the sheet's data table.
-    quantities : tuple of Quantity
-        What is asked at every position.
-    conditions : str
-        The validity conditions in words (for the course page and the sheet's footer).
-    """
-
-    name: str
-    title: str
-    sample: Callable[[np.random.Generator], tuple[Mechanism, float]]
-    check: Callable[[Mechanism], list[str]]
-    data: Callable[[Mechanism], list[tuple[str, str, str, str]]]
-    quantities: tuple[Quantity, ...]
-    conditions: str
-
-
-def _mm(value: float) -> float:
-    """Round a length to whole millimetres (m)."""
-    return round(float(value), 3)
-
-
-def _speed(rng: np.random.Generator, low: int, high: int) -> float:
-    """A crank speed (rad/s) that is a multiple of 5 in [low, high]."""
-    return float(5 * rng.integers(low // 5, high // 5 + 1))
-
-
-# --- crank-slider ------------------------------------------------------------------------------------
-
-CRANK_SLIDER_MIN_TRANSMISSION_DEG = 45.0
-"""Smallest transmission angle μ of a crank-slider variant (degrees), see :func:`crank_slider_transmission_min`."""
-
-
-def crank_slider_transmission_min(mechanism: CrankSlider) -> float:
-    """Smallest transmission angle μ (rad) of a crank-slider whose crank turns fully.
-
-    Notes
-    -----
-    μ is the angle between the rod and the normal to the guide at B, μ = π/2 − |ψ| (ψ measured from
-    the guide's direction). |ψ| is largest when the crank pin is farthest from the guide,
-    L1 + |e|, so ``sin |ψ|_max = (L1 + |e|)/L2`` (chapter 3), computed here with atan2.
-    """
-    reach = mechanism.crank + abs(mechanism.offset)
-    psi_max = math.atan2(reach, math.sqrt((mechanism.rod - reach) * (mechanism.rod + reach)))
-    return 0.5 * math.pi - psi_max
-
-
-def _sample_crank_slider(rng: np.random.Generator) -> tuple[CrankSlider, float]:
-    crank = _mm(rng.uniform(0.040, 0.120))
-    rod = _mm(crank / rng.uniform(0.20, 0.35))         # λ = L1/L2 of engines and compressors
-    offset = 0.0 if rng.random() < 0.5 else _mm(rng.choice([-1.0, 1.0]) * rng.uniform(0.05, 0.30) * crank)
-    return CrankSlider(crank=crank, rod=rod, offset=offset), _speed(rng, 50, 300)
-
-
-def _check_crank_slider(mechanism: CrankSlider) -> list[str]:
-    problems = []
-    if not (full_revolution(mechanism) and mechanism.rod > mechanism.crank + abs(mechanism.offset)):
-        problems.append("the crank does not turn a full revolution (L2 > L1 + |e| is needed)")
-    elif math.degrees(crank_slider_transmission_min(mechanism)) < CRANK_SLIDER_MIN_TRANSMISSION_DEG:
-        problems.append("the smallest transmission angle is below "
-                        f"{CRANK_SLIDER_MIN_TRANSMISSION_DEG:g}°")
-    return problems
-
-
-def _data_crank_slider(m: CrankSlider) -> list[tuple[str, str, str, str]]:
-    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
-            ("L2", "coupler (connecting-rod) length |AB|", f"{m.rod:.3f}", "m"),
-            ("e", "offset: the guide is the line y = e", f"{m.offset:.3f}", "m"),
-            ("", "assembly", "the slider B to the right of the crank pin A (x_B > x_A)", "")]
-
-
-# --- four-bar (crank-rocker) ---------------------------------------------------------------------------
-
-FOUR_BAR_TRANSMISSION_DEG = (35.0, 145.0)
-"""The transmission angle μ of a four-bar variant stays within these bounds (degrees)."""
-FOUR_BAR_GRASHOF_MARGIN = 0.02
-"""(p + q) − (s + l) of a four-bar variant is at least this fraction of the sum of the lengths."""
-
-
-def _sample_four_bar(rng: np.random.Generator) -> tuple[FourBar, float]:
-    d = rng.uniform(0.20, 0.40)
-    direction = math.radians(rng.uniform(-15.0, 15.0))
-    frame = (_mm(d * math.cos(direction)), _mm(d * math.sin(direction)))
-    crank = _mm(rng.uniform(0.15, 0.35) * d)
-    coupler = _mm(rng.uniform(0.70, 1.40) * d)
-    rocker = _mm(rng.uniform(0.50, 1.20) * d)
-    branch = int(rng.choice([1, -1]))
-    return FourBar(crank=crank, coupler=coupler, rocker=rocker, frame=frame, branch=branch), _speed(rng, 20, 120)
-
-
-def _check_four_bar(mechanism: FourBar) -> list[str]:
-    problems = []
-    grashof = grashof_class(*mechanism.lengths)
-    if grashof.name != "crank-rocker":
-        problems.append(f"it is a {grashof.name}, not a crank-rocker")
-    elif grashof.margin < FOUR_BAR_GRASHOF_MARGIN * sum(mechanism.lengths):
-        problems.append("it is too close to a change-point linkage (Grashof margin)")
-    else:
-        low, high = (math.degrees(mu) for mu in transmission_extremes(mechanism))
-        if low < FOUR_BAR_TRANSMISSION_DEG[0] or high > FOUR_BAR_TRANSMISSION_DEG[1]:
-            problems.append(f"its transmission angle ranges over [{low:.1f}°, {high:.1f}°], outside "
-                            f"[{FOUR_BAR_TRANSMISSION_DEG[0]:g}°, {FOUR_BAR_TRANSMISSION_DEG[1]:g}°]")
-    return problems
-
-
-def _data_four_bar(m: FourBar) -> list[tuple[str, str, str, str]]:
-    side = "left" if m.branch == 1 else "right"
-    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
-            ("L2", "coupler length |AB|", f"{m.coupler:.3f}", "m"),
-            ("L3", "rocker length |CB|", f"{m.rocker:.3f}", "m"),
-            ("(a, b)", "rocker pivot C", f"({m.frame[0]:.3f}, {m.frame[1]:.3f})", "m"),
-            ("", "assembly (branch)", f"{m.branch:+d}: B to the {side} of the line from A to C", "")]
-
-
-# --- slotted lever -------------------------------------------------------------------------------------
-
-SLOTTED_MIN_PIVOT_RATIO = 1.3
-"""The lever's pivot is at least this many crank radii from the crank's centre (oscillating lever)."""
-
-
-def _sample_slotted_lever(rng: np.random.Generator) -> tuple[SlottedLever, float]:
-    crank = _mm(rng.uniform(0.050, 0.150))
-    distance = rng.uniform(1.4, 2.5) * crank
-    direction = math.radians(rng.uniform(-110.0, -70.0))   # the pivot below the crank, as in a shaper
-    pivot = (_mm(distance * math.cos(direction)), _mm(distance * math.sin(direction)))
-    return SlottedLever(crank=crank, pivot=pivot), _speed(rng, 10, 60)
-
-
-def _check_slotted_lever(mechanism: SlottedLever) -> list[str]:
-    if mechanism.kind != "oscillating" or mechanism.pivot_distance < SLOTTED_MIN_PIVOT_RATIO * mechanism.crank:
-        return [f"the pivot is closer than {SLOTTED_MIN_PIVOT_RATIO:g} crank radii: the lever would swing too far "
-                "or rotate"]
-    return []
-
-
-def _data_slotted_lever(m: SlottedLever) -> list[tuple[str, str, str, str]]:
-    return [("r", "crank radius |OA| (the block is on the crank pin A)", f"{m.crank:.3f}", "m"),
-            ("(a, b)", "the lever's fixed pivot C", f"({m.pivot[0]:.3f}, {m.pivot[1]:.3f})", "m"),
-            ("K", "time ratio of the lever (for reference)",
-             f"{slotted_time_ratio(m.crank, m.pivot_distance):.3f}", "")]
-
-
-TASKS: dict[str, Task] = {
-    "crank-slider": Task(
-        "crank-slider", "Crank-slider", _sample_crank_slider, _check_crank_slider, _data_crank_slider,
-        (Quantity("B.s", "x_B", "position of the slider B on its guide (its x coordinate)", "m"),
-         Quantity("B.v", "v_B", "velocity of the slider (positive towards +x)", "m/s"),
-         Quantity("B.a", "a_B", "acceleration of the slider (positive towards +x)", "m/s²"),
-         Quantity("coupler.omega", "ψ_t", "angular velocity of the coupler (positive counter-clockwise)", "1/s"),
-         Quantity("coupler.alpha", "ψ_tt", "angular acceleration of the coupler (positive counter-clockwise)",
-                  "1/s²")),
-        f"the crank turns a full revolution (L2 > L1 + |e|) and the transmission angle, between the rod and the "
-        f"normal to the guide, never falls below {CRANK_SLIDER_MIN_TRANSMISSION_DEG:g}°; L1/L2 between 0.2 and 0.35"),
-    "four-bar": Task(
-        "four-bar", "Crank-rocker four-bar", _sample_four_bar, _check_four_bar, _data_four_bar,
-        (Quantity("coupler.angle_deg", "ψ", "coupler angle, of the vector A→B from +x, counter-clockwise", "°"),
-         Quantity("rocker.angle_deg", "ξ", "rocker angle, of the vector C→B from +x, counter-clockwise", "°"),
-         Quantity("coupler.omega", "ψ_t", "angular velocity of the coupler (positive counter-clockwise)", "1/s"),
-         Quantity("rocker.omega", "ξ_t", "angular velocity of the rocker (positive counter-clockwise)", "1/s"),
-         Quantity("coupler.alpha", "ψ_tt", "angular acceleration of the coupler", "1/s²"),
-         Quantity("rocker.alpha", "ξ_tt", "angular acceleration of the rocker", "1/s²")),
-        "Grashof's condition holds with the crank the shortest link (a crank-rocker), at least "
-        f"{100 * FOUR_BAR_GRASHOF_MARGIN:g} % of the sum of the lengths away from a change point, and the "
-        f"transmission angle stays between {FOUR_BAR_TRANSMISSION_DEG[0]:g}° and {FOUR_BAR_TRANSMISSION_DEG[1]:g}° "
-        "over the whole revolution"),
-    "slotted-lever": Task(
-        "slotted-lever", "Crank with an oscillating slotted lever", _sample_slotted_lever, _check_slotted_lever,
-        _data_slotted_lever,
-        (Quantity("lever.angle_deg", "ξ", "lever angle, of the vector C→A from +x, counter-clockwise", "°"),
-         Quantity("lever.omega", "ξ_t", "angular velocity of the lever (positive counter-clockwise)", "1/s"),
-         Quantity("lever.alpha", "ξ_tt", "angular acceleration of the lever", "1/s²"),
-         Quantity("A.s", "L_tek", "distance from the pivot C to the block A", "m"),
-         Quantity("A.v", "v_rel", "sliding velocity of the block along the lever (positive away from C)", "m/s"),
-         Quantity("A.a", "a_rel", "relative acceleration of the block along the lever (positive away from C)",
-                  "m/s²"),
-         Quantity("A.coriolis", "a_cor", "Coriolis acceleration 2 ξ_t v_rel (positive towards the lever's left)",
-                  "m/s²")),
-        f"the lever oscillates, its pivot at least {SLOTTED_MIN_PIVOT_RATIO:g} crank radii from the crank's centre"),
-}
-"""The mechanisms an assignment can be set on, by command-line name."""
 
 
 def quantity_values(solution: Solution, column: str) -> np.ndarray:

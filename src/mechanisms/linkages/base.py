@@ -21,6 +21,7 @@ from ..blocks.crank import crank_angle
 from ..core.errors import DeadCentreWarning, describe_angles
 from ..core.validate import require_finite, require_order
 from ..core.motion import AngleMotion, Motion, PointMotion, point_on_link
+from .groups import Group
 
 __all__ = [
     "Solution",
@@ -181,6 +182,10 @@ class Mechanism(ABC):
     cli_name: ClassVar[str | None] = None
     cli_parameters: ClassVar[tuple[Parameter, ...]] = ()
     links: ClassVar[dict[str, str]] = {}
+    benchmark: ClassVar[bool] = False
+    """True for the mechanisms that ``python -m mechanisms bench`` measures (at :meth:`example`)."""
+    always_assembles: ClassVar[bool] = False
+    """True for a mechanism that assembles at every crank angle (a slotted lever)."""
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -213,6 +218,37 @@ class Mechanism(ABC):
                 f"angle(s) {describe_angles(solution.phi[solution.singular])}; see Solution.singular",
                 DeadCentreWarning, stacklevel=2)
         return solution
+
+    @classmethod
+    def example(cls) -> "Mechanism":
+        """The book's example of this mechanism (the benchmark measures it where ``benchmark`` is set)."""
+        raise NotImplementedError(f"{cls.__name__} has no example: give it one in its module")
+
+    def assembly_intervals(self) -> list[tuple[float, float]]:
+        """Crank-angle intervals (rad, start < stop) in which the mechanism assembles.
+
+        The one assembly-range API of every mechanism. A crank that turns fully has one interval
+        of length 2π (``[(θ0 − π, θ0 + π)]``); a mechanism that never assembles, none. A mechanism
+        that assembles at every crank angle sets ``always_assembles = True`` and gets ``[(−π, π)]``;
+        one that does not says where it does by overriding this method.
+        """
+        if self.always_assembles:
+            return [(-math.pi, math.pi)]
+        raise NotImplementedError(f"{type(self).__name__} does not say where it assembles (assembly_intervals); "
+                                  "solve() raises AssemblyError, naming the crank angles, where it does not")
+
+    def full_turn(self) -> bool:
+        """True if the crank can turn a full revolution (one assembly interval of length 2π)."""
+        intervals = self.assembly_intervals()
+        return len(intervals) == 1 and intervals[0][1] - intervals[0][0] >= 2.0 * math.pi * (1.0 - 1e-12)
+
+    def groups(self) -> tuple[Group, ...]:
+        """The mechanism's structure: its crank, then its Assur groups in the order they are solved.
+
+        Empty for a mechanism that does not describe it; the plans and instant centres need it
+        (:mod:`mechanisms.linkages.groups`).
+        """
+        return ()
 
     @abstractmethod
     def _solve(self, crank: AngleMotion, order: int) -> Solution:

@@ -8,12 +8,14 @@ circle–line block (:func:`~mechanisms.blocks.circle_line.slider_on_line`).
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .chunks import solve_in_blocks
+from .groups import RRP, Crank, Group
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_line import slider_on_line
 from ..blocks.crank import crank_pin
@@ -105,14 +107,33 @@ class CrankSlider(Mechanism):
             raise AssemblyError(f"the rod cannot reach the guide at any crank angle: rod = {self.rod:g} m is "
                                 f"shorter than |offset| − crank = {abs(self.offset) - self.crank:g} m")
 
+    benchmark = True
+
+    @classmethod
+    def example(cls) -> "CrankSlider":
+        """The benchmark's offset crank-slider: L1 = 1 m, L2 = 3.5 m, e = 0.5 m."""
+        return cls(crank=1.0, rod=3.5, offset=0.5)
+
+    def assembly_intervals(self) -> list[tuple[float, float]]:
+        """Crank-angle intervals (rad) of assembly: ``[(−π, π)]`` for a full revolution (L2 ≥ L1 + |e|),
+        else those of :func:`assembly_ranges`."""
+        ranges = assembly_ranges(self.crank, self.rod, self.offset)
+        return [(-math.pi, math.pi)] if ranges is None else ranges
+
+    def groups(self) -> tuple[Group, ...]:
+        return (Crank("O", "A"), RRP("B", "A", "coupler", "slider", 0.0))
+
     @property
     def full_revolution(self) -> bool:
-        """True if the crank can turn a full revolution: L2 ≥ L1 + |e|."""
-        return self.rod >= self.crank + abs(self.offset)
+        """Deprecated: :meth:`full_turn`."""
+        warnings.warn("CrankSlider.full_revolution is deprecated: use full_turn()", DeprecationWarning, stacklevel=2)
+        return self.full_turn()
 
     @property
     def assembly_ranges(self) -> list[tuple[float, float]] | None:
-        """Crank-angle intervals (rad) of assembly, ``None`` for a full revolution (see :func:`assembly_ranges`)."""
+        """Deprecated: :meth:`assembly_intervals` (which gives ``[(−π, π)]``, not ``None``, for a full turn)."""
+        warnings.warn("CrankSlider.assembly_ranges is deprecated: use assembly_intervals()", DeprecationWarning,
+                      stacklevel=2)
         return assembly_ranges(self.crank, self.rod, self.offset)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
@@ -126,7 +147,7 @@ class CrankSlider(Mechanism):
             block = slider_on_line(pin, self.rod, through=1j * self.offset, direction=0.0, branch=self.branch,
                                    angles=phi)
         except AssemblyError as error:
-            ranges = self.assembly_ranges
+            ranges = self.assembly_intervals()
             reason = (f"the rod cannot reach the guide (rod = {self.rod:.10g} m < crank + |offset| = "
                       f"{self.crank + abs(self.offset):.10g} m, so the crank cannot turn fully")
             if len(ranges) > 1:

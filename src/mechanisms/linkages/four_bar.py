@@ -22,6 +22,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .chunks import solve_in_blocks
+from ..core.angles import wrap_angle
+from .groups import RRR, Crank, Group
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_circle import hinge
 from ..blocks.crank import crank_pin
@@ -103,7 +105,7 @@ def stable_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocker: f
         height = np.sqrt((total + r) * (total - r) * (r - difference) * (r + difference)) / (2.0 * coupler)
     foot = (r**2 + (coupler - rocker) * (coupler + rocker)) / (2.0 * coupler)   # = F
     psi = np.arctan2(q, p) + branch * np.arctan2(height, foot)
-    return np.angle(np.exp(1j * psi))
+    return wrap_angle(psi)
 
 
 def cramer_rates(phi: ArrayLike, psi: ArrayLike, xi: ArrayLike, crank: float, coupler: float, rocker: float,
@@ -304,9 +306,19 @@ class FourBar(Mechanism):
         """(L1, L2, L3, d): crank, coupler, rocker and frame |OC| (m)."""
         return self.crank, self.coupler, self.rocker, abs(self.pivot)
 
+    benchmark = True
+
+    @classmethod
+    def example(cls) -> "FourBar":
+        """The benchmark's crank-rocker: L1 = 1 m, L2 = 3.5 m, L3 = 3 m, C = (4, 0) m, branch +1."""
+        return cls(crank=1.0, coupler=3.5, rocker=3.0, frame=(4.0, 0.0), branch=1)
+
     def assembly_intervals(self) -> list[tuple[float, float]]:
-        """Crank-angle intervals (rad) in which the linkage assembles (see module function)."""
+        """Crank-angle intervals (rad) in which the linkage assembles (see the module function)."""
         return assembly_intervals(self.crank, self.coupler, self.rocker, self.frame)
+
+    def groups(self) -> tuple[Group, ...]:
+        return (Crank("O", "A"), RRR("B", "A", "C", "coupler", "rocker"))
 
     def change_points(self) -> tuple[float, ...]:
         """Crank angles (rad) of the change points the crank passes (empty for most linkages)."""

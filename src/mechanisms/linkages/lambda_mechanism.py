@@ -53,6 +53,11 @@ class LambdaMechanism(Mechanism):
     )
     links = {"crank": "O", "coupler": "A", "rocker": "D"}
 
+    @classmethod
+    def example(cls) -> "LambdaMechanism":
+        """Chebyshev's lambda mechanism of chapter 4: crank 2 m, half coupler 6.5 m, ground 5 m."""
+        return cls(crank=2.0, half_coupler=6.5, ground=5.0)
+
     def __init__(self, crank: float, half_coupler: float, ground: float, branch: int = -1,
                  keep_side: bool = False):
         self.crank = require_length("crank", crank)
@@ -61,6 +66,10 @@ class LambdaMechanism(Mechanism):
         self.branch = require_branch(branch)
         self.four_bar = FourBar(self.crank, self.half_coupler, self.half_coupler, (-self.ground, 0.0), self.branch,
                                  keep_side)
+
+    def assembly_intervals(self) -> list[tuple[float, float]]:
+        """Those of its four-bar O–A–C–D (see :meth:`FourBar.assembly_intervals`)."""
+        return self.four_bar.assembly_intervals()
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         try:

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .chunks import solve_in_blocks
+from .groups import RPR, RRP, Crank, Group, LinkPoint
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_line import slider_on_line
 from ..blocks.crank import crank_pin
@@ -90,6 +91,16 @@ class SlottedLever(Mechanism):
         Parameter("pivot", "pair", "the lever's fixed pivot C = A,B (m); the crank turns about the origin"),
     )
     links = {"crank": "O", "lever": "C"}
+    benchmark = True
+    always_assembles = True
+
+    @classmethod
+    def example(cls) -> "SlottedLever":
+        """The benchmark's oscillating lever: r = 1 m, pivot C = (0, 2) m."""
+        return cls(crank=1.0, pivot=(0.0, 2.0))
+
+    def groups(self) -> tuple[Group, ...]:
+        return (Crank("O", "A"), RPR("A", "C", "lever"), LinkPoint("B", "lever"))
 
     def __init__(self, crank: float, pivot: Sequence[float], lever: float | None = None):
         self.crank = require_length("crank", crank)
@@ -182,6 +193,11 @@ class RockerInBlock(Mechanism):
     )
     links = {"crank": "O", "rocker": "A"}
 
+    @classmethod
+    def example(cls) -> "RockerInBlock":
+        """Chapter 5's rocker in a block: r = 2 m, pivot (0, 4) m."""
+        return cls(crank=2.0, pivot=(0.0, 4.0))
+
     def __init__(self, crank: float, pivot: Sequence[float], reach: float | None = None):
         self._lever = SlottedLever(crank, pivot)
         self.crank, self.pivot, self.kind = self._lever.crank, self._lever.pivot, self._lever.kind
@@ -251,6 +267,14 @@ class Shaper(Mechanism):
         Parameter("branch", "branch", "+1: ram right of the lever's end, -1: left", 1),
     )
     links = {"crank": "O", "lever": "C", "rod": "B"}
+
+    @classmethod
+    def example(cls) -> "Shaper":
+        """Chapter 5's shaper: r = 0.1 m, pivot (0, −0.4) m, lever 0.6 m, rod 0.15 m, ram at y = 0.22 m."""
+        return cls(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22)
+
+    def groups(self) -> tuple[Group, ...]:
+        return (Crank("O", "A"), RPR("A", "C", "lever"), LinkPoint("B", "lever"), RRP("D", "B", "rod", "slider", 0.0))
 
     def __init__(self, crank: float, pivot: Sequence[float], lever: float, rod: float, ram_height: float,
                  branch: int = 1):
@@ -337,6 +361,11 @@ class SlottedRockers(Mechanism):
         Parameter("branch", "branch", "+1: D ahead of the foot K along the lever, -1: behind", 1),
     )
     links = {"crank": "O", "lever": "O1", "rocker": "O2"}
+
+    @classmethod
+    def example(cls) -> "SlottedRockers":
+        """Chapter 5's two rockers with a slotted pair: r = 0.1 m, pivots (0, 0.3) and (0.12, 0.38) m, rocker 0.2 m."""
+        return cls(crank=0.1, pivot=(0.0, 0.3), rocker_pivot=(0.12, 0.38), rocker=0.2)
 
     def __init__(self, crank: float, pivot: Sequence[float], rocker_pivot: Sequence[float], rocker: float,
                  branch: int = 1):
@@ -431,6 +460,11 @@ class SliderOnCoupler(Mechanism):
         Parameter("guide_angle", "angle", "direction of the guide of L, degrees from +x"),
     )
     links = {"crank": "O", "coupler": "A"}
+
+    @classmethod
+    def example(cls) -> "SliderOnCoupler":
+        """Chapter 5's slider on a coupler: L1 = 0.08 m, L2 = 0.3 m, guide through (0.2, 0) m at 70°."""
+        return cls(crank=0.08, rod=0.3, guide_point=(0.2, 0.0), guide_angle=math.radians(70.0))
 
     def __init__(self, crank: float, rod: float, guide_point: Sequence[float], guide_angle: float,
                  offset: float = 0.0):
