@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed
 SITE   := _build/html
 STUDENT := _build/student
 
-.PHONY: book book-student test notebooks clean
+.PHONY: book book-student test notebooks sources typecheck clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -42,6 +42,15 @@ test: book book-student
 # Re-execute notebooks in place and store their outputs (NB=path/to/one.ipynb for one).
 notebooks: $(STAMP)
 	$(BIN)/python tools/run_notebooks.py $(NB)
+
+# The notebooks' text, paired by jupytext as MyST Markdown (book/NN-*.md, exercises/NN-*.md): after editing
+# either file of a pair, sync them (the newer file wins), then re-execute with `make notebooks NB=…`.
+sources: $(STAMP)
+	$(BIN)/jupytext --sync book/[0-9][0-9]-*.ipynb exercises/[0-9][0-9]-*.ipynb
+
+# Type checking of the package (configuration in pyproject.toml); `make test` runs it too.
+typecheck: $(STAMP)
+	$(BIN)/mypy
 
 clean:
 	rm -rf _build _mathjax
