@@ -3,8 +3,8 @@
 ``table`` prints the kinematic table of a mechanism over crank positions, like the classic
 course programs do for 12 positions. Every mechanism class that sets ``cli_name`` appears
 as a ``table`` subcommand with its ``cli_parameters``; degrees at the interface, radians inside.
-``assign`` and ``check`` set and grade course assignments (:mod:`mechanisms.assign`,
-:mod:`mechanisms.grading`).
+``assign`` and ``check`` set and grade course assignments (:mod:`mechanisms.course.assign`,
+:mod:`mechanisms.course.grading`).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from typing import Sequence
 import numpy as np
 
 from .linkages.base import Mechanism, Solution, registry
-from .core.errors import DeadCentreWarning, InvalidParameterError, MechanismError
+from .core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError
 from .core.motion import Motion
 
 __all__ = ["main", "kinematic_table", "parse_angles", "parse_point", "MAX_POSITIONS"]
@@ -41,7 +41,7 @@ def parse_angles(text: str) -> np.ndarray:
     if not all(math.isfinite(v) for v in (start, stop, step)) or step == 0 or (stop - start) / step <= 0:
         raise InvalidParameterError("--angles", text, "START:STOP:STEP with a step that reaches STOP")
     # count the positions first: np.arange with a fractional step may include STOP by round-off
-    count = math.ceil((stop - start) / step - 1e-9)
+    count = max(1, math.ceil((stop - start) / step - 1e-9))   # START itself at least
     if count > MAX_POSITIONS:
         raise InvalidParameterError("--angles", text, f"at most {MAX_POSITIONS} positions")
     return np.radians(start + step * np.arange(count))
@@ -83,7 +83,7 @@ def _number(value: float):
 
 def kinematic_table(mechanism: Mechanism, solution: Solution,
                     points: Sequence[tuple[str, str, float, float]] = ()) -> list[dict]:
-    """Rows of the kinematic table: one dict per crank position, keys as in DESIGN.md's JSON."""
+    """Rows of the kinematic table: one dict per crank position, keys as in docs/DESIGN.md's JSON."""
     extra = {name: solution.point_on(link, u, v) for name, link, u, v in points}
     all_points = {name: solution.point(name) for name in solution.point_names} | extra
     rows = []
@@ -121,6 +121,9 @@ def _flat(row: dict) -> dict:
 _UNITS = {"angle_deg": "°", "omega": "1/s", "alpha": "1/s²", "x": "m", "y": "m", "vx": "m/s", "vy": "m/s",
           "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s", "a": "m/s²", "coriolis": "m/s²"}
 
+CHUNK = 4096
+"""Crank positions solved, formatted and written at a time: the table's memory does not grow with its length."""
+
 
 def _readable(value: float | None, scale: float) -> str:
     """Six significant digits; round-off below 1e-12 of the column's scale printed as 0."""
@@ -129,57 +132,152 @@ def _readable(value: float | None, scale: float) -> str:
     return "0" if abs(value) <= 1e-12 * scale else f"{value:.6g}"
 
 
-def _text_block(title: str, rows: list[dict], group: str, name: str) -> str:
-    keys = list(rows[0][group][name])
-    headers = ["φ, °"] + [f"{k.removesuffix('_deg')}, {_UNITS.get(k, '')}".rstrip(", ") for k in keys]
-    scales = {k: max((abs(r[group][name][k]) for r in rows if r[group][name][k] is not None), default=0.0)
-              for k in keys}
-    body = [[f"{r['phi_deg']:.1f}"] + [_readable(r[group][name][k], scales[k]) for k in keys] for r in rows]
-    widths = [max(len(h), *(len(b[j]) for b in body)) for j, h in enumerate(headers)]
-    lines = [title, "  ".join(h.rjust(w) for h, w in zip(headers, widths))]
-    lines += ["  ".join(c.rjust(w) for c, w in zip(b, widths)) for b in body]
-    return "\n".join(lines)
+class _Table:
+    """The kinematic table of a mechanism over crank positions, solved and written chunk by chunk.
 
+    Every pass over the positions solves them again, :data:`CHUNK` at a time, so that no array or row
+    over all positions is ever held: CSV and JSON are written in one pass, the text table (a block
+    per link, point and slider, its columns aligned) in one pass that measures the columns and one
+    per block that writes it.
+    """
 
-def _format(mechanism: Mechanism, omega: float, alpha: float, rows: list[dict], fmt: str) -> str:
-    if fmt == "json":
+    def __init__(self, mechanism: Mechanism, phi_chunks, omega: float, alpha: float,
+                 points: Sequence[tuple[str, str, float, float]]):
+        self.mechanism, self.phi_chunks, self.omega, self.alpha, self.points = mechanism, phi_chunks, omega, alpha, points
+
+    def solutions(self, order: int = 2):
+        """The solution of each chunk of positions (dead centres: unbounded values, no warning)."""
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DeadCentreWarning)  # unbounded values print as — / null
+            for phi in self.phi_chunks():
+                yield self.mechanism.solve(phi, self.omega, self.alpha, order=order)
+
+    def rows(self):
+        """The rows of each chunk (lists of dicts, keys as in docs/DESIGN.md's JSON)."""
+        for solution in self.solutions():
+            yield kinematic_table(self.mechanism, solution, self.points)
+
+    def check(self) -> list[str]:
+        """Solve every position once (positions only) before anything is written: an input that cannot be
+        assembled gets its error, naming every crank angle that fails, and no half-written table.
+        Returns the names of the mechanism's joints."""
+        failed: list[np.ndarray] = []
+        first: AssemblyError | None = None
+        joints: list[str] = []
+        for index, phi in enumerate(self.phi_chunks()):
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore", DeadCentreWarning)
+                    # the first chunk to the full order, so that the crank's speed is checked too
+                    joints = self.mechanism.solve(phi, self.omega, self.alpha, order=0 if index else 2).point_names
+            except AssemblyError as error:
+                first = first or error
+                failed.append(np.atleast_1d(error.angles if error.angles is not None else phi))
+        if first is not None:
+            raise AssemblyError(first.reason, np.concatenate(failed), first.valid_range)
+        return joints
+
+    def write_json(self, out) -> None:
         # as the command line takes them: angles in degrees, named like the rows' angle_deg
+        mechanism = self.mechanism
         parameters = {f"{p.name}_deg" if p.kind == "angle" else p.name:
                       math.degrees(value) if p.kind == "angle" else value
                       for p, value in zip(mechanism.cli_parameters, mechanism.parameters().values())}
-        return json.dumps({"mechanism": mechanism.cli_name, "parameters": parameters |
-                           {"omega": omega, "alpha": alpha}, "rows": rows}, indent=1, ensure_ascii=False)
-    if fmt == "csv":
-        out = io.StringIO()
-        flats = [_flat(r) for r in rows]
-        writer = csv.DictWriter(out, fieldnames=list(flats[0]), lineterminator="\n")
-        writer.writeheader()
-        writer.writerows({k: ("" if v is None else v) for k, v in f.items()} for f in flats)
-        return out.getvalue().rstrip("\n")
-    blocks = [f"{mechanism.describe()}; omega = {omega:g} 1/s, alpha = {alpha:g} 1/s²"]
-    for group, label in (("links", "link"), ("points", "point"), ("sliders", "slider")):
-        for name in rows[0][group]:
-            blocks.append(_text_block(f"{label} {name}", rows, group, name))
-    return "\n\n".join(blocks)
+        head = json.dumps({"mechanism": mechanism.cli_name, "parameters": parameters |
+                           {"omega": self.omega, "alpha": self.alpha}}, indent=1, ensure_ascii=False)
+        out.write(head[:-2] + ',\n "rows": [')    # the same text as json.dumps of the whole, indent 1
+        separator = "\n"
+        for rows in self.rows():
+            for row in rows:
+                out.write(separator + "\n".join("  " + line for line in
+                                                json.dumps(row, indent=1, ensure_ascii=False).split("\n")))
+                separator = ",\n"
+        out.write("\n ]\n}" if separator == ",\n" else "]\n}")
+
+    def write_csv(self, out) -> None:
+        writer = None
+        for rows in self.rows():
+            flats = [_flat(r) for r in rows]
+            if writer is None:
+                writer = csv.DictWriter(out, fieldnames=list(flats[0]), lineterminator="\n")
+                writer.writeheader()
+            writer.writerows({k: ("" if v is None else v) for k, v in f.items()} for f in flats)
+
+    def _columns(self) -> dict[tuple[str, str], dict[str, tuple[float, dict[int, float], bool]]]:
+        """Per block and column: the largest |value|, the largest |value| per printed width, and whether a
+        value is unbounded — enough to know each column's width whatever its round-off threshold."""
+        columns: dict[tuple[str, str], dict[str, tuple[float, dict[int, float], bool]]] = {}
+        for rows in self.rows():
+            for row in rows:
+                for group in ("links", "points", "sliders"):
+                    for name, values in row[group].items():
+                        block = columns.setdefault((group, name), {})
+                        for key, value in values.items():
+                            scale, by_width, none = block.get(key, (0.0, {}, False))
+                            if value is None:
+                                none = True
+                            else:
+                                size = abs(value)
+                                width = len(f"{value:.6g}")
+                                by_width[width] = max(by_width.get(width, 0.0), size)
+                                scale = max(scale, size)
+                            block[key] = (scale, by_width, none)
+        return columns
+
+    def write_text(self, out) -> None:
+        mechanism = self.mechanism
+        out.write(f"{mechanism.describe()}; omega = {self.omega:g} 1/s, alpha = {self.alpha:g} 1/s²")
+        columns = self._columns()
+        phi_width = max((len(f"{row['phi_deg']:.1f}") for rows in self.rows() for row in rows), default=0)
+        for group, label in (("links", "link"), ("points", "point"), ("sliders", "slider")):
+            for (kind, name), block in columns.items():
+                if kind != group:
+                    continue
+                keys = list(block)
+                headers = ["φ, °"] + [f"{k.removesuffix('_deg')}, {_UNITS.get(k, '')}".rstrip(", ") for k in keys]
+                widths = [max(len(headers[0]), phi_width)]
+                for k in keys:
+                    scale, by_width, none = block[k]
+                    printed = [w for w, size in by_width.items() if size > 1e-12 * scale]
+                    small = any(size <= 1e-12 * scale for size in by_width.values()) or none
+                    widths.append(max([len(headers[len(widths)])] + printed + ([1] if small else [])))
+                out.write(f"\n\n{label} {name}\n" + "  ".join(h.rjust(w) for h, w in zip(headers, widths)))
+                for rows in self.rows():
+                    lines = []
+                    for r in rows:
+                        cells = [f"{r['phi_deg']:.1f}"] + [_readable(r[group][name][k], block[k][0]) for k in keys]
+                        lines.append("  ".join(c.rjust(w) for c, w in zip(cells, widths)))
+                    out.write("\n" + "\n".join(lines))
 
 
-def _table(args: argparse.Namespace) -> str:
+def _table(args: argparse.Namespace, out) -> None:
     cls = registry[args.mechanism]
     mechanism = cls(**{p.name: _class_value(p, getattr(args, p.name)) for p in cls.cli_parameters})
     positions = 12 if args.positions is None else args.positions
     if not args.angles and not 1 <= positions <= MAX_POSITIONS:
         raise InvalidParameterError("--positions", positions, f"a whole number from 1 to {MAX_POSITIONS}")
-    phi = parse_angles(args.angles) if args.angles else np.radians(np.arange(positions) * 360.0 / positions)
     points = [parse_point(p) for p in args.point]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)  # unbounded values print as — / null
-        solution = mechanism.solve(phi, args.omega, args.alpha, order=2)
+    if args.angles:
+        angles = parse_angles(args.angles)
+        count = angles.size
+
+        def phi_chunks():
+            for start in range(0, count, CHUNK):
+                yield angles[start:start + CHUNK]
+    else:
+        def phi_chunks():
+            for start in range(0, positions, CHUNK):
+                yield np.radians(np.arange(start, min(start + CHUNK, positions)) * 360.0 / positions)
+    table = _Table(mechanism, phi_chunks, args.omega, args.alpha, points)
+    joints = table.check()
     for name, link, _, _ in points:
-        if name in solution.point_names or [n for n, *_ in points].count(name) > 1:
+        if name in joints or [n for n, *_ in points].count(name) > 1:
             raise InvalidParameterError("--point", name, "a new name, not a joint's or another point's")
         if link not in cls.links:
             raise InvalidParameterError("--point", f"{name}={link}", f"on one of the links {', '.join(cls.links)}")
-    return _format(mechanism, args.omega, args.alpha, kinematic_table(mechanism, solution, points), args.format)
+    {"json": table.write_json, "csv": table.write_csv, "text": table.write_text}[args.format](out)
+    if args.format != "csv":   # the CSV writer ends every row with its newline
+        out.write("\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -346,7 +444,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("error: name a mechanism: " + ", ".join(sorted(registry)) + " (see `table --help`)", file=sys.stderr)
         return 2
     try:
-        print(_table(args))
+        _table(args, sys.stdout)
     except MechanismError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
