@@ -37,6 +37,7 @@ book-student: $(STAMP) _mathjax/mathjax/es5/tex-chtml.js
 		--config $(STUDENT)/_config.yml --path-output $(STUDENT)
 
 test: book book-student
+	$(BIN)/mypy
 	$(BIN)/python -m pytest
 
 # Re-execute notebooks in place and store their outputs (NB=path/to/one.ipynb for one).

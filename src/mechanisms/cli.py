@@ -18,7 +18,7 @@ import os
 import re
 import sys
 import warnings
-from typing import Sequence
+from typing import Any, Callable, Sequence, cast
 
 import numpy as np
 
@@ -67,7 +67,8 @@ def _pair(text: str) -> tuple[float, float]:
     return float(parts[0]), float(parts[1])
 
 
-_KINDS = {"length": float, "number": float, "angle": float, "pair": _pair, "branch": int}
+_KINDS: dict[str, Callable[[str], Any]] = {"length": float, "number": float, "angle": float, "pair": _pair,
+                                          "branch": int}
 
 
 def _class_value(parameter, value):
@@ -181,7 +182,7 @@ class _Table:
         # as the command line takes them: angles in degrees, named like the rows' angle_deg
         mechanism = self.mechanism
         parameters = {f"{p.name}_deg" if p.kind == "angle" else p.name:
-                      math.degrees(value) if p.kind == "angle" else value
+                      math.degrees(cast(float, value)) if p.kind == "angle" else value
                       for p, value in zip(mechanism.cli_parameters, mechanism.parameters().values())}
         head = json.dumps({"mechanism": mechanism.cli_name, "parameters": parameters |
                            {"omega": self.omega, "alpha": self.alpha}}, indent=1, ensure_ascii=False)

@@ -76,7 +76,7 @@ def grashof_class(crank: float, coupler: float, rocker: float, frame: float,
                for name, value in (("crank", crank), ("frame", frame), ("coupler", coupler), ("rocker", rocker))}
     ordered = sorted(lengths.values())
     margin = (ordered[1] + ordered[2]) - (ordered[0] + ordered[3])
-    shortest = min(lengths, key=lengths.get)
+    shortest = min(lengths, key=lambda name: lengths[name])
     scale = sum(ordered)
     if abs(margin) <= tolerance * scale:
         name = "change point"
@@ -140,12 +140,12 @@ def limit_positions(mechanism: FourBar) -> LimitPositions:
                             f"the crank, s + l < p + q); this linkage is a {grashof_class(*mechanism.lengths).name}")
     l1, l2, l3, d = mechanism.lengths
     c = mechanism.pivot
-    found = []
+    found: list[tuple[float, float]] = []
     for reach, sign in ((l2 + l1, 1.0), (l2 - l1, -1.0)):
         # intersections of |B| = reach and |B − C| = L3, in closed form (as in the hinge block)
         foot = (d**2 + reach**2 - l3**2) / (2.0 * d)
         height = math.sqrt(max(reach**2 - foot**2, 0.0))
-        best = None
+        best: tuple[float, float, float] | None = None
         for side in (1.0, -1.0):
             b = (foot + 1j * side * height) * c / d
             phi = math.atan2(sign * b.imag, sign * b.real) % (2.0 * math.pi)   # in [0, 2π), as documented
@@ -153,13 +153,14 @@ def limit_positions(mechanism: FourBar) -> LimitPositions:
             error = abs(solved - b)
             if best is None or error < best[0]:
                 best = (error, phi, math.atan2((b - c).imag, (b - c).real))
-        found.append(best[1:])
-    phi = np.array([f[0] for f in found])
+        assert best is not None
+        found.append((best[1], best[2]))
+    phis = np.array([f[0] for f in found])
     xi = np.array([f[1] for f in found])
-    forward = (phi[1] - phi[0]) % (2.0 * math.pi)   # the angle turned forward: [0, 2π), not a wrap
+    forward = (phis[1] - phis[0]) % (2.0 * math.pi)   # the angle turned forward: [0, 2π), not a wrap
     backward = 2.0 * math.pi - forward
     swing = abs(float(wrap_angle(xi[0] - xi[1])))
-    return LimitPositions(phi, xi, swing, forward, backward, max(forward, backward) / min(forward, backward))
+    return LimitPositions(phis, xi, swing, forward, backward, max(forward, backward) / min(forward, backward))
 
 
 def transmission_angle(solution: Solution) -> np.ndarray:

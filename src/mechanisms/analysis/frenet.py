@@ -149,7 +149,9 @@ class RotationLaw:
         ``V_τ = ṡ[1 − ρ(k + φ') sin φ]``, ``V_n = ṡ ρ(k + φ') cos φ`` with ṡ = ωr.
         """
         self._require(1, "velocities")
+        assert self.phi_s is not None   # checked by _require
         turn = rho * (self.curvature + self.phi_s)
+        assert self.s_t is not None   # checked by _require
         return self.s_t * (1.0 - turn * np.sin(self.phi)), self.s_t * turn * np.cos(self.phi)
 
     def frame_acceleration(self, rho: float) -> tuple[np.ndarray, np.ndarray]:
@@ -160,8 +162,10 @@ class RotationLaw:
         ``W_n = ṡ²[ρφ'' cos φ − ρ(k + φ')² sin φ + k]``.
         """
         self._require(2, "accelerations")
+        assert self.s_t is not None and self.s_tt is not None   # checked by _require
         k, phi = self.curvature, self.phi
         c, s = np.cos(phi), np.sin(phi)
+        assert self.phi_s is not None and self.phi_ss is not None
         turn = self.curvature + self.phi_s
         squared = self.s_t**2
         tangential = -squared * rho * (self.phi_ss * s + turn**2 * c)

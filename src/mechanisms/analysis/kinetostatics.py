@@ -89,7 +89,9 @@ class _System:
             self.rhs[:, self.rows[f"{body}.x"]] += props.mass * centre.acceleration.real
             self.rhs[:, self.rows[f"{body}.y"]] += props.mass * centre.acceleration.imag
             if bodies[body]:
-                self.rhs[:, self.rows[f"{body}.m"]] += props.inertia * body_angle(solution, body).alpha
+                turning = body_angle(solution, body)
+                assert turning is not None   # a body that turns has an angle
+                self.rhs[:, self.rows[f"{body}.m"]] += props.inertia * turning.alpha
 
     def _moment_row(self, body: str):
         return self.rows.get(f"{body}.m")
@@ -207,11 +209,11 @@ def joint_forces(mechanism: Mechanism, solution: Solution, masses: Mapping[str, 
         raise MechanismError(f"joint forces need accelerations: solve with order=2 (got order={solution.order})")
     phi = solution.phi
     groups = mechanism.groups()
-    if len(groups) != 2 or not isinstance(groups[0], Crank) or not isinstance(groups[1], (RRR, RRP)):
+    crank, dyad = (groups[0], groups[1]) if len(groups) == 2 else (None, None)
+    if not isinstance(crank, Crank) or not isinstance(dyad, (RRR, RRP)):
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
                                     "a crank and one RRR or RRP group, a four-bar or a crank-slider "
                                     "(kinetostatics is written for these two)")
-    crank, dyad = groups
     O, A, B = (solution.point(n).value for n in (crank.pivot, crank.pin, dyad.joint))
     if isinstance(dyad, RRP):
         # the slider is a body of its own, named by its joint; it translates along the guide

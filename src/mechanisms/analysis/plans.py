@@ -29,7 +29,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
-from typing import Mapping, Sequence
+from typing import Mapping, Sequence, cast
 
 
 from ..linkages.base import Mechanism, Solution
@@ -440,6 +440,7 @@ def _hinge_on_guide(b: _Builder, where, first: str, first_label: str, joint: str
         b.equations.append(((f"v_{joint}",), (f"v_{first}", f"v_{relative}")))
         b.rates[link] = _rate(t1 * 1j * arm, arm)
         return
+    assert velocity is not None   # an acceleration plan is built on its velocity plan
     omega = velocity.rates[link]
     normal = -omega**2 * arm
     n = b.vertex(f"n{number}", f + normal)
@@ -469,6 +470,7 @@ def _two_hinges(b: _Builder, where, first: str, first_label: str, pivot: str, pi
         b.rates[coupler] = _rate(t1 * 1j * arm1, arm1)
         b.rates[rocker] = _rate(t2 * 1j * arm2, arm2)
         return
+    assert velocity is not None
     w1, w2 = velocity.rates[coupler], velocity.rates[rocker]
     normal1, normal2 = -w1**2 * arm1, -w2**2 * arm2
     n1 = b.vertex("n2", f + normal1)
@@ -506,6 +508,7 @@ def _block_on_lever(b: _Builder, where, group: RPR, on_lever: str, velocity: Pla
         b.equations.append(((f"v_{on_lever}",), (f"v_{group.block}", f"v_{on_lever}{block2}")))
         b.rates[group.lever] = _rate(t1 * 1j * arm, arm)
         return
+    assert velocity is not None
     omega3 = velocity.rates[group.lever]
     sliding = velocity.vector(f"v_{on_lever}{block2}").value
     coriolis = 2.0 * 1j * omega3 * sliding
@@ -638,7 +641,7 @@ def velocity_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
     ``v_A3 = v_A2 + v_A3A2`` with ``v_A3 ⊥ CA`` and ``v_A3A2 ∥ CA``; shaper: then
     ``v_D = v_B + v_DB``. ω of a link = (relative velocity)/(length), its sense from the direction.
     """
-    return _build(mechanism, solution, index, "velocity", None, points, scale)
+    return cast(VelocityPlan, _build(mechanism, solution, index, "velocity", None, points, scale))
 
 
 def acceleration_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
@@ -677,7 +680,7 @@ def acceleration_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
         raise InvalidParameterError("velocity", f"a plan at φ = {math.degrees(velocity.phi):g}°",
                                     f"the velocity plan of the same position, φ = "
                                     f"{math.degrees(float(solution.phi[index])):g}°")
-    return _build(mechanism, solution, index, "acceleration", velocity, points, scale)
+    return cast(AccelerationPlan, _build(mechanism, solution, index, "acceleration", velocity, points, scale))
 
 
 # --- instant centres ------------------------------------------------------------------------------------
@@ -767,11 +770,11 @@ def instant_centres(mechanism: Mechanism, solution: Solution, index: int = 0) ->
     """
     where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
     groups = mechanism.groups()
-    if len(groups) != 2 or not isinstance(groups[0], Crank) or not isinstance(groups[1], (RRR, RRP)):
+    crank, dyad = (groups[0], groups[1]) if len(groups) == 2 else (None, None)
+    if not isinstance(crank, Crank) or not isinstance(dyad, (RRR, RRP)):
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
                                     "a four-link mechanism: a crank and one RRR or RRP group (a four-bar or a "
                                     "crank-slider)")
-    crank, dyad = groups
     links = link_numbers(groups)
     finite: dict[tuple[int, int], complex] = {(0, 1): where[crank.pivot], (1, 2): where[crank.pin],
                                               (2, 3): where[dyad.joint]}

@@ -95,7 +95,7 @@ def limit_positions(mechanism: SlottedLever | Shaper) -> LimitPositions:
     first = (gamma + 0.5 * math.pi - beta) % (2.0 * math.pi)    # crank angles in [0, 2π), as documented
     second = (gamma - 0.5 * math.pi + beta) % (2.0 * math.pi)
     lever = tuple(float(np.angle(r * np.exp(1j * phi) - pivot)) for phi in (first, second))
-    return LimitPositions((first, second), lever, beta, time_ratio(r, d))
+    return LimitPositions((first, second), (lever[0], lever[1]), beta, time_ratio(r, d))
 
 
 @dataclass(frozen=True)

@@ -31,12 +31,12 @@ import os
 import platform
 import time
 import warnings
-from typing import Callable, Iterable, Sequence
+from typing import Any, Callable, Iterable, Sequence, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.motion import AngleMotion
+from ..core.motion import AngleMotion, Motion
 from ..linkages.base import Mechanism, Solution, registry
 from ..core.errors import DeadCentreWarning
 from ..linkages.four_bar import FourBar
@@ -192,7 +192,7 @@ def _wrapped(difference: np.ndarray, angle: bool) -> np.ndarray:
 
 
 def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarray | None, q_tt: np.ndarray | None,
-                      ref: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[float, float, float]:
+                      ref: Sequence[np.ndarray]) -> tuple[float, float, float]:
     """Largest errors of coordinates, velocities and accelerations against :func:`reference`.
 
     ``q``, ``q_t``, ``q_tt`` are arrays of shape (2, n) (or ``None`` if not computed); angles
@@ -200,7 +200,7 @@ def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarra
     per second, per second squared), ``nan`` for what was not computed.
     """
     angles = _angle_rows(mechanism)
-    out = []
+    out: list[float] = []
     for mine, theirs, wrap in ((q, ref[0], True), (q_t, ref[1], False), (q_tt, ref[2], False)):
         if mine is None:
             out.append(math.nan)
@@ -211,7 +211,7 @@ def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarra
             diff = _wrapped(diff, wrap and angles[row])
             worst = max(worst, float(np.max(np.abs(diff))))
         out.append(worst)
-    return tuple(out)
+    return out[0], out[1], out[2]
 
 
 def _angle_rows(mechanism: Mechanism) -> tuple[bool, ...]:
@@ -222,9 +222,9 @@ def _angle_rows(mechanism: Mechanism) -> tuple[bool, ...]:
     return tuple(isinstance(c, AngleMotion) for c in mechanism.coordinates(sample))
 
 
-def _coordinates(mechanism: Mechanism, solution: Solution, order: int):
+def _coordinates(mechanism: Mechanism, solution: Solution, order: int) -> list[Any]:
     coords = mechanism.coordinates(solution)
-    parts = [np.array([c.value for c in coords])]
+    parts: list[Any] = [np.array([c.value for c in coords])]
     for k in (1, 2):
         parts.append(np.array([c.derivatives()[k] for c in coords]) if order >= k else None)
     return parts
@@ -254,7 +254,8 @@ def output_bytes(solution: Solution) -> int:
     """
     seen, total = set(), 0
     skip = {np.asarray(solution.phi).__array_interface__["data"][0]}
-    groups = [solution.angle(n) for n in solution.angle_names] + [solution.point(n) for n in solution.point_names]
+    groups: list[Motion] = [solution.angle(n) for n in solution.angle_names]
+    groups += [solution.point(n) for n in solution.point_names]
     groups += [solution.slider(n) for n in solution.slider_names]
     for motion in groups:
         for array in motion.derivatives():
@@ -269,7 +270,8 @@ def output_bytes(solution: Solution) -> int:
     return total
 
 
-def _result(mechanism: str, method: str, order: int, parameter, n: int, seconds: float, error: float) -> dict:
+def _result(mechanism: str, method: str, order: int, parameter: Any, n: int, seconds: float,
+            error: float | None) -> dict:
     return {"mechanism": mechanism, "method": method, "order": order, "parameter": parameter, "n": int(n),
             "seconds": seconds, "ns_per_position": seconds / n * 1e9,
             "max_error": None if error is None or not math.isfinite(error) else error}
@@ -289,7 +291,8 @@ def _bench_mechanism(name: str, mechanism: Mechanism, n: int, repeat: int) -> li
         seconds = best_time(lambda: mechanism.solve(phi, OMEGA, order=order), repeat)
         solution = mechanism.solve(phi, OMEGA, order=order)
         q = _coordinates(mechanism, solution, order)
-        errors = coordinate_errors(mechanism, *(None if a is None else a[:, sample] for a in q), ref)
+        q0, q1, q2 = (None if a is None else a[:, sample] for a in q)
+        errors = coordinate_errors(mechanism, q0, q1, q2, ref)
         results.append(_result(name, "closed form", order, None, n, seconds, max(errors[:order + 1])))
         buffer = np.ones(output_bytes(solution), dtype=np.uint8)
         seconds = best_time(buffer.copy, repeat)
@@ -308,7 +311,7 @@ def _bench_mechanism(name: str, mechanism: Mechanism, n: int, repeat: int) -> li
     for order in (1, 2):
         for h in DIFFERENCE_STEPS:
             def difference():
-                return np.array([central_difference(lambda a, k=k: _position_row(mechanism, a, k), phi, OMEGA, h,
+                return np.array([central_difference(_row_function(mechanism, k), phi, OMEGA, h,
                                                     order, angle=k == 0 or _angle_rows(mechanism)[k])
                                  for k in range(2)])
             seconds = best_time(difference, repeat)
@@ -322,6 +325,13 @@ def _position_row(mechanism: Mechanism, phi: np.ndarray, row: int) -> np.ndarray
     """One coordinate of the closed form at order 0 (a fresh solve: what a finite difference pays)."""
     coords = mechanism.coordinates(mechanism.solve(phi, OMEGA, order=0))
     return coords[row].value
+
+
+def _row_function(mechanism: Mechanism, row: int) -> Callable[[np.ndarray], np.ndarray]:
+    """``φ ↦`` one coordinate of the closed form, for numerical differentiation."""
+    def position(phi: np.ndarray) -> np.ndarray:
+        return _position_row(mechanism, phi, row)
+    return position
 
 
 # --- peers ------------------------------------------------------------------------------------------
@@ -398,7 +408,7 @@ def machine_description() -> str:
     try:
         cpus = len(os.sched_getaffinity(0))
     except AttributeError:
-        cpus = os.cpu_count()
+        cpus = os.cpu_count() or 1
     return (f"{platform.machine()} {platform.processor() or ''} {cpus} CPU(s), {platform.system()}, "
             f"Python {platform.python_version()}, numpy {np.__version__}").replace("  ", " ")
 
@@ -436,7 +446,7 @@ def run(sizes: Iterable[int] = DEFAULT_SIZES, repeat: int = 3, mechanisms: Itera
         for name in names:
             results += _bench_mechanism(name, table[name], int(n), repeat)
         if peers and "four-bar" in names:
-            results += _bench_peers(table["four-bar"], int(n), repeat)
+            results += _bench_peers(cast(FourBar, table["four-bar"]), int(n), repeat)
     extended = np.finfo(np.longdouble).eps
     if extended >= np.finfo(float).eps:
         notes.append("numpy.longdouble is double precision on this machine: errors below ~1e-15 are not resolved")
@@ -458,7 +468,7 @@ def format_text(report: dict) -> str:
              f"reference: {report['reference']}; time: best of R runs"]
     lines += [f"note: {note}" for note in report["notes"]]
     header = f"{'method':<22}{'order':>6}{'parameter':>12}{'n':>10}{'ns/position':>14}{'max error':>12}"
-    current = None
+    current: Any = None
     for r in report["results"]:
         key = (r["n"] if r["method"] != "pylinkage step" else current[0], r["mechanism"])
         if key != current:
@@ -515,7 +525,8 @@ def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
 
     for k in range(3):
         seconds = best_time(lambda: mechanism.solve(phi, OMEGA, order=k), repeat)
-        errors = coordinate_errors(mechanism, *_coordinates(mechanism, mechanism.solve(phi, OMEGA, order=k), k), ref)
+        q0, q1, q2 = _coordinates(mechanism, mechanism.solve(phi, OMEGA, order=k), k)
+        errors = coordinate_errors(mechanism, q0, q1, q2, ref)
         add("closed form", None, k, seconds, errors[k])
     guess = np.array([c.value for c in mechanism.coordinates(mechanism.solve(phi - math.radians(1.0), order=0))])
     for tol in tolerances:
@@ -529,7 +540,7 @@ def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
     for k in (1, 2):
         for h in steps:
             def difference():
-                return [central_difference(lambda a, r=r: _position_row(mechanism, a, r), phi, OMEGA, h, k,
+                return [central_difference(_row_function(mechanism, r), phi, OMEGA, h, k,
                                            angle=angles[r]) for r in range(2)]
             seconds = best_time(difference, repeat)
             values = difference()
@@ -551,7 +562,7 @@ def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> d
     for k, name in ((1, "velocities"), (2, "accelerations")):
         errors = []
         for h in steps:
-            values = [central_difference(lambda a, r=r: _position_row(mechanism, a, r), phi, OMEGA, h, k,
+            values = [central_difference(_row_function(mechanism, r), phi, OMEGA, h, k,
                                          angle=angles[r]) for r in range(2)]
             errors.append(max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(2)))
         out[name] = np.array(errors)
@@ -565,7 +576,7 @@ def cost_against_size(mechanism: Mechanism, sizes: Sequence[int], repeat: int = 
     The loop calls ``solve`` once per crank angle, as a program written without arrays would;
     it is timed only for sizes up to ``loop_limit`` (``nan`` above).
     """
-    out = {"vectorized, order 0": [], "vectorized, order 2": [], "loop per angle, order 2": []}
+    out: dict[str, list[float]] = {"vectorized, order 0": [], "vectorized, order 2": [], "loop per angle, order 2": []}
     for n in sizes:
         phi = np.arange(n) * (2.0 * math.pi / n)
         for order in (0, 2):
@@ -667,7 +678,7 @@ def plot_stored(report: dict, mechanism: str = "four-bar", ax=None):
 
     if ax is None:
         _, ax = plt.subplots(figsize=(6.5, 4))
-    series = {}
+    series: dict[Any, Any] = {}
     for r in report["results"]:
         if r["mechanism"] != mechanism:
             continue

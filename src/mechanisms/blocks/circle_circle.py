@@ -17,6 +17,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -86,7 +88,7 @@ def _assembly_failure(distance, shape, total: float, difference: float, toleranc
     raise AssemblyError(reason, None if where is None else where[far | near])
 
 
-def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int = 1,
+def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray = 1,
           angles: ArrayLike | None = None) -> Hinge:
     """Solve two links meeting at a hinge: J with |J − p| = L_p and |J − q| = L_q.
 
@@ -132,6 +134,7 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     length_p = require_length("length_p", length_p)
     length_q = require_length("length_q", length_q)
     branch_array = np.asarray(branch)
+    side: Any
     if branch_array.ndim == 0:
         side = float(require_branch(branch))
     else:

@@ -23,6 +23,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -46,7 +48,7 @@ _PARALLEL = 1e-12
 
 def _as_point(point, like, order: int) -> PointMotion:
     """A PointMotion for a moving point, or a fixed one for a complex number."""
-    if isinstance(point, Motion):
+    if isinstance(point, PointMotion):
         return point
     point = complex(point)
     if not (np.isfinite(point.real) and np.isfinite(point.imag)):
@@ -56,7 +58,7 @@ def _as_point(point, like, order: int) -> PointMotion:
 
 def _as_angle(angle, like, order: int) -> AngleMotion:
     """An AngleMotion for a moving direction, or a constant one for a number (rad)."""
-    if isinstance(angle, Motion):
+    if isinstance(angle, AngleMotion):
         return angle
     value = float(angle)
     if not np.isfinite(value):
@@ -85,7 +87,7 @@ def _product(a: tuple, b: tuple, order: int) -> tuple:
 def _quotient(n: tuple, c: tuple, order: int) -> tuple:
     """Derivatives of ``n / c``: ``s_t = (n_t − s c_t)/c``, ``s_tt = (n_tt − 2 s_t c_t − s c_tt)/c``."""
     s = n[0] / c[0]
-    s_t = (n[1] - s * c[1]) / c[0] if order >= 1 else None
+    s_t: Any = (n[1] - s * c[1]) / c[0] if order >= 1 else None
     s_tt = (n[2] - 2.0 * s_t * c[1] - s * c[2]) / c[0] if order >= 2 else None
     return s, s_t, s_tt
 
@@ -338,7 +340,7 @@ def circle_on_line(centre: PointMotion | complex, radius: float, through: PointM
     singular = reach <= 100.0 * slack   # w within round-off of 0: a dead centre, rates unbounded
     w = np.where(singular, 0.0, np.sqrt(np.maximum(reach, 0.0)))
     with np.errstate(divide="ignore", invalid="ignore"):
-        w_t = -h.value * h.velocity / w if order >= 1 else None
+        w_t: Any = -h.value * h.velocity / w if order >= 1 else None
         w_tt = -(h.velocity**2 + h.value * h.acceleration + w_t**2) / w if order >= 2 else None
     along = u + Motion(branch * w, None if w_t is None else branch * w_t,
                        None if w_tt is None else branch * w_tt).truncated(order)

@@ -65,7 +65,7 @@ def wrap_degrees(angle: ArrayLike) -> np.ndarray:
 
 def angle_of(z: ArrayLike) -> np.ndarray:
     """The direction of plane vectors ``z = x + iy`` (rad, in (−π, π]): ``arg z = atan2(y, x)``."""
-    return np.angle(z)
+    return np.asarray(np.angle(np.asarray(z)))
 
 
 def angle_of_fast(z: ArrayLike) -> np.ndarray:

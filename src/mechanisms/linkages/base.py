@@ -12,7 +12,7 @@ import math
 import warnings
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
-from typing import ClassVar, Sequence
+from typing import Any, ClassVar, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -55,7 +55,7 @@ class Solution:
     def __init__(self, phi: np.ndarray, order: int, *, angles: dict[str, AngleMotion],
                  points: dict[str, PointMotion], links: dict[str, str],
                  sliders: dict[str, Motion] | None = None,
-                 extras: dict[str, dict[str, np.ndarray]] | None = None,
+                 extras: dict[str, dict[str, Any]] | None = None,
                  singular: np.ndarray | None = None):
         self.phi = phi
         self.order = order
@@ -192,7 +192,7 @@ class Mechanism(ABC):
         if cls.cli_name:
             registry[cls.cli_name] = cls
 
-    def solve(self, phi: ArrayLike, omega: float = 1.0, alpha: float = 0.0, order: int = 2) -> Solution:
+    def solve(self, phi: ArrayLike, omega: ArrayLike = 1.0, alpha: ArrayLike = 0.0, order: int = 2) -> Solution:
         """Kinematics over an array of crank angles.
 
         Parameters
@@ -268,7 +268,7 @@ class Mechanism(ABC):
         """The unknowns q (angles, slider positions) taken from a solution, in constraint order."""
 
     @abstractmethod
-    def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
+    def constraints(self, q: Sequence[Any], phi: Any) -> tuple:
         """Residuals of the constraint equations Φ(q, φ); zero when assembled.
 
         Written with numpy operations only (``+ - * /``, ``np.sin``, ``np.cos``, ``np.sqrt``),

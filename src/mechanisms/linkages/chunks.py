@@ -12,14 +12,14 @@ memory); for the four-bar at a million positions it is about one and a half time
 
 from __future__ import annotations
 
-from typing import Callable
+from typing import Callable, cast
 
 import numpy as np
 
 from .base import Solution
 from ..core.errors import AssemblyError
 from ..core.angles import constant
-from ..core.motion import AngleMotion, Motion
+from ..core.motion import AngleMotion, Motion, PointMotion
 
 __all__ = ["BLOCK", "solve_in_blocks"]
 
@@ -55,7 +55,8 @@ class _Gather:
 
     @staticmethod
     def _parts(part: Solution):
-        motions = [("angle", name, part.angle(name)) for name in part.angle_names if name != "crank"]
+        motions: list[tuple[str, str, Motion]] = [("angle", name, part.angle(name)) for name in part.angle_names
+                                                  if name != "crank"]
         motions += [("point", name, part.point(name)) for name in part.point_names]
         motions += [("slider", name, part.slider(name)) for name in part.slider_names]
         return motions
@@ -97,7 +98,8 @@ class _Gather:
         for kind, name, cls, slots in layout:
             groups[kind][name] = cls(*(None if slot is None else array(slot) for slot in slots))
         extras = {joint: {key: array(slot) for key, slot in values.items()} for joint, values in extras.items()}
-        return Solution(crank.value, order, angles=groups["angle"], points=groups["point"], links=links,
+        return Solution(crank.value, order, angles=cast(dict[str, AngleMotion], groups["angle"]),
+                        points=cast(dict[str, PointMotion], groups["point"]), links=links,
                         sliders=groups["slider"], extras=extras, singular=array(singular))
 
 
@@ -150,4 +152,5 @@ def solve_in_blocks(solve: Callable[[AngleMotion, int], Solution], crank: AngleM
             del part
     except AssemblyError:
         return solve(crank, order)
+    assert gather is not None   # more than four blocks: the loop ran
     return gather.solution(crank, order, links)

@@ -135,6 +135,7 @@ def cramer_rates(phi: ArrayLike, psi: ArrayLike, xi: ArrayLike, crank: float, co
     ``f2 = −φ_tt L1 cos φ + φ_t² L1 sin φ + ψ_t² L2 sin ψ − ξ_t² L3 sin ξ``.
     """
     phi, psi, xi = (np.asarray(v, dtype=float) for v in (phi, psi, xi))
+    omega, alpha = np.asarray(omega, dtype=float), np.asarray(alpha, dtype=float)
     l1, l2, l3 = crank, coupler, rocker
     with np.errstate(divide="ignore", invalid="ignore"):
         psi_t = -omega * l1 * np.sin(phi - xi) / (l2 * np.sin(psi - xi))
@@ -150,15 +151,14 @@ def cramer_rates(phi: ArrayLike, psi: ArrayLike, xi: ArrayLike, crank: float, co
 
 # --- assembly and change points -----------------------------------------------------------------
 
-def _half_opening(distance: float, crank: float, reach: float) -> float | None:
-    """The angle β ∈ [0, π] between OA and OC at which |AC| = reach, or None if never.
+def _half_opening(distance: float, crank: float, reach: float) -> float:
+    """The angle β ∈ [0, π] between OA and OC at which |AC| = reach (which must lie in [|d − L1|, d + L1]).
 
     From the cosine law |AC|² = L1² + d² − 2 L1 d cos β in half-angle form:
     ``tan²(β/2) = (reach² − (d − L1)²)/((d + L1)² − reach²)``, computed with atan2.
     """
     low, high = abs(distance - crank), distance + crank
-    if reach < low or reach > high:
-        return None
+    reach = min(max(reach, low), high)   # the callers pass reaches inside; round-off stays inside too
     return 2.0 * math.atan2(math.sqrt((reach - low) * (reach + low)), math.sqrt((high - reach) * (high + reach)))
 
 

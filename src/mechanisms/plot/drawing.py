@@ -7,7 +7,7 @@ lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors 
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
 
 import matplotlib
 
@@ -17,6 +17,7 @@ from matplotlib import animation
 from matplotlib.patches import Polygon, Rectangle
 
 from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
+from ..core.errors import InvalidParameterError
 from ..core.motion import PointMotion
 from .workarounds import offline_jshtml, skip_idle_redraw
 
@@ -59,7 +60,7 @@ ANIMATION_DPI = 72
 VELOCITY_COLOUR = "#17becf"
 ACCELERATION_COLOUR = "#e377c2"
 
-BOOK_STYLE = {
+BOOK_STYLE: dict[str, Any] = {
     "figure.figsize": (6.4, 4.0),
     "figure.dpi": 100,
     "savefig.dpi": 100,
@@ -76,7 +77,7 @@ BOOK_STYLE = {
 
 def use_book_style() -> None:
     """Set the book's matplotlib style (called on import of :mod:`mechanisms.plot`)."""
-    matplotlib.rcParams.update(BOOK_STYLE)
+    matplotlib.rcParams.update(BOOK_STYLE)  # type: ignore[arg-type]   # its keys are rcParams' names
 
 
 use_book_style()
@@ -159,7 +160,7 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
     size = size or 0.03 * _extent(solution)
     where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
     guide_half_length = guide_half_length or 0.6 * _extent(solution)
-    artists = []
+    artists: list[Any] = []
     for item in mechanism.scheme():
         if isinstance(item, Guide):
             _guide_symbol(ax, item.through, item.angle, guide_half_length, size)
@@ -272,6 +273,8 @@ def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Seq
     """
     ax = _new_axes(ax)
     if not isinstance(points, dict):
+        if solution is None:
+            raise InvalidParameterError("solution", None, "a Solution when the points are given by name")
         points = {name: solution.point(name) for name in points}
     colours = iter(colours if colours is not None else PATH_COLOURS * 4)
     closed = solution is not None and _full_turn(solution.phi)

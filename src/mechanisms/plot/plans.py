@@ -106,9 +106,9 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
                 break
         else:
             groups.append([label])
-    centre = np.mean(list(drawn.values()))
+    centre = complex(np.mean(list(drawn.values())))
     for group in groups:
-        point = np.mean([drawn[label] for label in group])
+        point = complex(np.mean([drawn[label] for label in group]))
         away = point - centre if plan.pole in group else point
         away = away / abs(away) if abs(away) > 1e-9 else 1j
         for label in group:

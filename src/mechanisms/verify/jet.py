@@ -10,6 +10,8 @@ round-off, without finite differences. This is what makes the generic solver of
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -28,7 +30,10 @@ class Jet:
     __array_priority__ = 100  # numpy arrays defer to Jet in mixed arithmetic
 
     def __init__(self, f: ArrayLike, d1: ArrayLike = 0.0, d2: ArrayLike = 0.0):
-        self.f, self.d1, self.d2 = f, d1, d2
+        # arrays or numbers of any float type (double, extended): numpy's arithmetic decides
+        self.f: Any = f
+        self.d1: Any = d1
+        self.d2: Any = d2
 
     # arithmetic --------------------------------------------------------------
     def __add__(self, other):

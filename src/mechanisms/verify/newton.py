@@ -58,6 +58,7 @@ def _jacobian(constraints: Constraints, q: np.ndarray, phi: np.ndarray) -> tuple
         out = _evaluate(constraints, seeded, phi)
         residual = [np.broadcast_to(r.f if isinstance(r, Jet) else r, phi.shape) for r in out]
         columns.append([np.broadcast_to(r.d1 if isinstance(r, Jet) else 0.0, phi.shape) for r in out])
+    assert residual is not None   # k ≥ 1 unknowns: the loop ran
     jac = np.stack([np.stack(col, axis=-1) for col in columns], axis=-1)  # (n, k_eq, k_unknown)
     return np.stack(residual, axis=-1), jac
 
