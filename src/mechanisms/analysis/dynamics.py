@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike
 
 from ..linkages.base import Mechanism
 from ..core.errors import InvalidParameterError
-from ..core.validate import require_finite, require_finite_array, require_positive
+from ..core.validate import require_finite, require_finite_array, require_positive, require_non_negative
 from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, applied_power, kinetic_energies,
                      potential_energy)
 
@@ -298,14 +298,7 @@ def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> flo
     (chapter 6). It includes the mean reduced inertia of the mechanism itself, which is
     subtracted to size the flywheel; the variable part of J_red is neglected.
     """
-    swing = _number_at_least_zero("swing", swing, "J")
+    swing = require_non_negative("swing", swing, "J")
     mean_speed = require_positive("mean_speed", mean_speed, "rad/s")
     coefficient = require_positive("coefficient", coefficient, "(δ = (ω_max − ω_min)/ω_m)")
     return swing / (coefficient * mean_speed**2)
-
-
-def _number_at_least_zero(name: str, value, unit: str) -> float:
-    number = require_finite(name, value)
-    if number < 0.0:
-        raise InvalidParameterError(name, value, f"a finite number ≥ 0 {unit}")
-    return number

@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 
 from ..linkages.base import Mechanism, Solution
 from ..core.errors import InvalidParameterError, MechanismError
+from ..core.validate import require_finite, require_non_negative
 from ..core.motion import AngleMotion, Motion, PointMotion, polar, translated_point
 
 __all__ = [
@@ -60,20 +61,6 @@ STANDARD_GRAVITY = 9.80665
 Value = Union[float, complex, np.ndarray, Callable[[Solution], np.ndarray]]
 
 
-def _finite(name: str, value) -> float:
-    value = float(value)
-    if not math.isfinite(value):
-        raise InvalidParameterError(name, value, "a finite number")
-    return value
-
-
-def _non_negative(name: str, value) -> float:
-    value = _finite(name, value)
-    if value < 0.0:
-        raise InvalidParameterError(name, value, "a finite number ≥ 0")
-    return value
-
-
 @dataclass(frozen=True)
 class LinkMass:
     """Mass properties of one body of a mechanism.
@@ -102,10 +89,10 @@ class LinkMass:
     inertia: float = 0.0
 
     def __post_init__(self):
-        object.__setattr__(self, "mass", _non_negative("mass", self.mass))
-        object.__setattr__(self, "inertia", _non_negative("inertia", self.inertia))
-        object.__setattr__(self, "along", _finite("along", self.along))
-        object.__setattr__(self, "left", _finite("left", self.left))
+        object.__setattr__(self, "mass", require_non_negative("mass", self.mass, "kg"))
+        object.__setattr__(self, "inertia", require_non_negative("inertia", self.inertia, "kg·m²"))
+        object.__setattr__(self, "along", require_finite("along", self.along))
+        object.__setattr__(self, "left", require_finite("left", self.left))
 
     def inertia_about_joint(self) -> float:
         """J about the body's first joint (kg·m²), by the parallel-axis theorem."""
@@ -176,8 +163,8 @@ class Spring:
     left: float = 0.0
 
     def __post_init__(self):
-        object.__setattr__(self, "stiffness", _non_negative("stiffness", self.stiffness))
-        object.__setattr__(self, "free_length", _non_negative("free_length", self.free_length))
+        object.__setattr__(self, "stiffness", require_non_negative("stiffness", self.stiffness, "N/m"))
+        object.__setattr__(self, "free_length", require_non_negative("free_length", self.free_length, "m"))
         object.__setattr__(self, "anchor", complex(self.anchor))
 
     def length(self, solution: Solution) -> Motion:
@@ -333,7 +320,7 @@ def potential_energy(solution: Solution, masses: Mapping[str, LinkMass], gravity
         ``V = Σ m g y_S + Σ k (ℓ − ℓ0)²/2`` (zero level y = 0) and
         ``dV/dt = Σ m g (y_S)_t + Σ k (ℓ − ℓ0) ℓ_t``.
     """
-    gravity = _finite("gravity", gravity)
+    gravity = require_finite("gravity", gravity)
     shape = np.shape(solution.phi)
     energy = np.zeros(shape)
     power = np.zeros(shape) if solution.order >= 1 else None

@@ -18,6 +18,7 @@ __all__ = [
     "require_length",
     "require_finite",
     "require_positive",
+    "require_non_negative",
     "require_finite_array",
     "require_branch",
     "require_order",
@@ -47,6 +48,14 @@ def require_finite(name: str, value: object) -> float:
 def require_positive(name: str, value: object, unit: str = "") -> float:
     """Return ``value`` as float, or raise if it is not a finite number > 0 (in ``unit``)."""
     return _number(name, value, f"a finite number > 0{' ' + unit if unit else ''}", positive=True)
+
+
+def require_non_negative(name: str, value: object, unit: str = "") -> float:
+    """Return ``value`` as float, or raise if it is not a finite number ≥ 0 (in ``unit``)."""
+    number = _number(name, value, f"a finite number ≥ 0{' ' + unit if unit else ''}", positive=False)
+    if number < 0.0:
+        raise InvalidParameterError(name, value, f"a finite number ≥ 0{' ' + unit if unit else ''}")
+    return number
 
 
 def require_finite_array(name: str, values: ArrayLike, unit: str = "") -> np.ndarray:

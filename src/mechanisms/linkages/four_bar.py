@@ -28,7 +28,7 @@ from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_circle import hinge
 from ..blocks.crank import crank_pin
 from ..core.errors import AssemblyError, InvalidParameterError, describe_range
-from ..core.validate import require_branch, require_finite, require_length
+from ..core.validate import require_branch, require_finite, require_length, require_flag, require_pair
 from ..core.motion import AngleMotion, Motion, fixed_point
 
 __all__ = [
@@ -233,12 +233,8 @@ def _sides(phi: np.ndarray, branch: int, theta0: float, flips: Sequence[float]) 
     return branch * np.where(count % 2 == 0, 1, -1)
 
 
-def _require_frame(value) -> tuple[float, float]:
-    try:
-        a, b = value
-    except (TypeError, ValueError):
-        raise InvalidParameterError("frame", value, "a pair (a, b) of coordinates in m") from None
-    a, b = require_finite("frame[0]", a), require_finite("frame[1]", b)
+def _require_frame(value: object) -> tuple[float, float]:
+    a, b = require_pair("frame", value)
     if a == 0.0 and b == 0.0:
         raise InvalidParameterError("frame", value, "a rocker pivot (a, b) other than the crank pivot (0, 0)")
     return a, b
@@ -289,7 +285,7 @@ class FourBar(Mechanism):
 
     def __init__(self, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
                  branch: int = 1, keep_side: bool = False):
-        self.keep_side = bool(keep_side)
+        self.keep_side = require_flag("keep_side", keep_side)
         self.crank = require_length("crank", crank)
         self.coupler = require_length("coupler", coupler)
         self.rocker = require_length("rocker", rocker)

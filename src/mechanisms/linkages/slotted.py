@@ -33,7 +33,7 @@ from ..blocks.crank import crank_pin
 from ..blocks.lever_block import LeverBlock, lever_block, lever_through_pivot
 from ..blocks.lines import angle_from_distance, circle_on_line, distance_to_line, line_intersection
 from ..core.errors import InvalidParameterError
-from ..core.validate import require_branch, require_finite, require_length
+from ..core.validate import require_branch, require_finite, require_length, require_pair
 from ..core.motion import AngleMotion, Motion, PointMotion, fixed_point, point_on_link, polar
 
 __all__ = ["SlottedLever", "RockerInBlock", "Shaper", "SlottedRockers", "SliderOnCoupler"]
@@ -41,14 +41,6 @@ __all__ = ["SlottedLever", "RockerInBlock", "Shaper", "SlottedRockers", "SliderO
 # A pivot whose distance from O differs from the crank radius by less than this (relative) is on the
 # crank circle: the block passes through the pivot.
 THROUGH_PIVOT_TOLERANCE = 1e-9
-
-
-def _pair(name: str, value) -> tuple[float, float]:
-    try:
-        a, b = value
-    except (TypeError, ValueError):
-        raise InvalidParameterError(name, value, "a pair of finite coordinates (a, b) in m") from None
-    return require_finite(f"{name}[0]", a), require_finite(f"{name}[1]", b)
 
 
 def _lever_part(crank: AngleMotion, radius: float, pivot: complex, kind: str) -> tuple[PointMotion, LeverBlock]:
@@ -104,7 +96,7 @@ class SlottedLever(Mechanism):
 
     def __init__(self, crank: float, pivot: Sequence[float], lever: float | None = None):
         self.crank = require_length("crank", crank)
-        self.pivot = _pair("pivot", pivot)
+        self.pivot = require_pair("pivot", pivot)
         self.pivot_point = complex(*self.pivot)
         self.pivot_distance = abs(self.pivot_point)
         if abs(self.pivot_distance - self.crank) <= THROUGH_PIVOT_TOLERANCE * self.crank:
@@ -279,7 +271,7 @@ class Shaper(Mechanism):
     def __init__(self, crank: float, pivot: Sequence[float], lever: float, rod: float, ram_height: float,
                  branch: int = 1):
         self.crank = require_length("crank", crank)
-        self.pivot = _pair("pivot", pivot)
+        self.pivot = require_pair("pivot", pivot)
         self.lever = require_length("lever", lever)
         self.rod = require_length("rod", rod)
         self.ram_height = require_finite("ram_height", ram_height)
@@ -370,8 +362,8 @@ class SlottedRockers(Mechanism):
     def __init__(self, crank: float, pivot: Sequence[float], rocker_pivot: Sequence[float], rocker: float,
                  branch: int = 1):
         self.crank = require_length("crank", crank)
-        self.pivot = _pair("pivot", pivot)
-        self.rocker_pivot = _pair("rocker_pivot", rocker_pivot)
+        self.pivot = require_pair("pivot", pivot)
+        self.rocker_pivot = require_pair("rocker_pivot", rocker_pivot)
         self.rocker = require_length("rocker", rocker)
         self.branch = require_branch(branch)
         self._lever = SlottedLever(self.crank, self.pivot)
@@ -471,7 +463,7 @@ class SliderOnCoupler(Mechanism):
         self.crank = require_length("crank", crank)
         self.rod = require_length("rod", rod)
         self.offset = require_finite("offset", offset)
-        self.guide_point = _pair("guide_point", guide_point)
+        self.guide_point = require_pair("guide_point", guide_point)
         self.guide_angle = require_finite("guide_angle", guide_angle)
         if self.rod <= self.crank + abs(self.offset):
             raise InvalidParameterError("rod", rod, f"greater than crank + |offset| = "
