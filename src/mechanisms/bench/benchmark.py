@@ -17,7 +17,7 @@ the largest error against a high-accuracy reference:
 
 The reference is the solution of the mechanism's own constraint equations by Newton's method in
 extended precision (``numpy.longdouble``, 64-bit mantissa on x86-64), polished from the closed
-form and differentiated exactly with :class:`~mechanisms.jet.Jet`: its error is about 1e-19,
+form and differentiated exactly with jets (:mod:`mechanisms.verify.jet`): its error is about 1e-19,
 a thousand times below the double-precision errors it measures, and it shares no formula with
 the closed forms.
 """
@@ -40,8 +40,8 @@ from ..core.motion import AngleMotion, Motion
 from ..linkages.base import Mechanism, Solution, registry
 from ..core.errors import DeadCentreWarning
 from ..linkages.four_bar import FourBar
-from ..verify.jet import Jet
 from ..verify import central_difference, solve_constraints
+from ..verify.newton import jacobian, newton_steps, rates
 
 __all__ = [
     "benchmark_mechanisms",
@@ -84,30 +84,6 @@ def benchmark_mechanisms() -> dict[str, Mechanism]:
 
 # --- the reference ------------------------------------------------------------------------------
 
-def _parts(values: Sequence, shape) -> tuple[np.ndarray, ...]:
-    return tuple(np.broadcast_to(v.f if isinstance(v, Jet) else v, shape) for v in values)
-
-
-def _derivative(values: Sequence, shape, which: str) -> tuple[np.ndarray, ...]:
-    return tuple(np.broadcast_to(getattr(v, which) if isinstance(v, Jet) else 0.0, shape) for v in values)
-
-
-def _solve_two(jac: list[list[np.ndarray]], rhs: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """Solve the 2×2 systems ``jac · x = rhs`` at every position by Cramer's rule (any float type)."""
-    (a, b), (c, d) = jac
-    det = a * d - b * c
-    return (rhs[0] * d - b * rhs[1]) / det, (a * rhs[1] - c * rhs[0]) / det
-
-
-def _jacobian(constraints: Callable, q: Sequence[np.ndarray], phi: np.ndarray):
-    columns = []
-    for j in range(2):
-        seeded = [Jet(q[i], np.ones_like(q[i]) if i == j else np.zeros_like(q[i])) for i in range(2)]
-        columns.append(_derivative(constraints(seeded, phi), phi.shape, "d1"))
-    residual = _parts(constraints(list(q), phi), phi.shape)
-    return [[columns[0][0], columns[1][0]], [columns[0][1], columns[1][1]]], residual
-
-
 def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha: float = 0.0,
               iterations: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The coordinates q with q_t and q_tt in extended precision, from the constraint equations.
@@ -133,26 +109,19 @@ def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha:
     extended precision's round-off (about 1e-19 relative); the third is a margin. The closed
     form only selects the branch: the result is the root of Φ(q, φ) = 0 next to it. Velocities
     and accelerations come from ``Φ_q q_t = −Φ_φ φ_t`` and the twice-differentiated constraints
-    (chapter 2), with exact derivatives (:class:`~mechanisms.jet.Jet`) in extended precision.
+    (chapter 2), with exact derivatives (jets) in extended precision: the generic solver's own Newton
+    steps and rates (:mod:`mechanisms.verify.newton`), in ``numpy.longdouble``.
     """
     phi_ld = np.atleast_1d(np.asarray(phi)).astype(np.longdouble)
     phi = phi_ld.astype(float)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeadCentreWarning)
         start = mechanism.solve(phi, omega, alpha, order=0)
-    q = [np.asarray(c.value, dtype=np.longdouble) for c in mechanism.coordinates(start)]
-    for _ in range(iterations):
-        jac, residual = _jacobian(mechanism.constraints, q, phi_ld)
-        step = _solve_two(jac, residual)
-        q = [q[0] - step[0], q[1] - step[1]]
-    jac, _ = _jacobian(mechanism.constraints, q, phi_ld)
-    w = np.full(phi.shape, omega, dtype=np.longdouble)
-    e = np.full(phi.shape, alpha, dtype=np.longdouble)
-    rates = _derivative(mechanism.constraints([Jet(v) for v in q], Jet(phi_ld, w)), phi.shape, "d1")
-    q_t = _solve_two(jac, [-r for r in rates])
-    path = mechanism.constraints([Jet(v, vt) for v, vt in zip(q, q_t)], Jet(phi_ld, w, e))
-    q_tt = _solve_two(jac, [-r for r in _derivative(path, phi.shape, "d2")])
-    return np.array(q), np.array(q_t), np.array(q_tt)
+    q = np.array([np.asarray(c.value, dtype=np.longdouble) for c in mechanism.coordinates(start)])
+    q = newton_steps(mechanism.constraints, q, phi_ld, iterations)
+    q_t, q_tt = rates(mechanism.constraints, q, phi_ld, np.longdouble(omega), np.longdouble(alpha), 2)
+    assert q_t is not None and q_tt is not None   # order 2
+    return q, q_t, q_tt
 
 
 def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
@@ -177,9 +146,8 @@ def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeadCentreWarning)
         solution = mechanism.solve(phi, order=0)
-    q = [np.asarray(c.value, dtype=float) for c in mechanism.coordinates(solution)]
-    jac, _ = _jacobian(mechanism.constraints, q, phi)
-    matrix = np.stack([np.stack(jac[0], axis=-1), np.stack(jac[1], axis=-1)], axis=-2)
+    q = np.array([np.asarray(c.value, dtype=float) for c in mechanism.coordinates(solution)])
+    _, matrix = jacobian(mechanism.constraints, q, phi)
     singular_values = np.linalg.svd(matrix, compute_uv=False)
     with np.errstate(divide="ignore"):
         return singular_values[..., 0] / singular_values[..., -1]

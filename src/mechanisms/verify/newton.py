@@ -25,6 +25,10 @@ from .jet import Jet
 
 __all__ = [
     "GenericSolution",
+    "jacobian",
+    "linear_solve",
+    "newton_steps",
+    "rates",
     "solve_constraints",
     "newton_history",
     "solve_generic",
@@ -63,15 +67,92 @@ def _jacobian(constraints: Constraints, q: np.ndarray, phi: np.ndarray) -> tuple
     return np.stack(residual, axis=-1), jac
 
 
+def jacobian(constraints: Constraints, q: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The residuals Φ (n, k) and the exact Jacobian Φ_q (n, k, k) at every position, in the float type of q.
+
+    Parameters
+    ----------
+    constraints : callable
+        ``Φ(q, φ)``, written with numpy operations (differentiated by jets).
+    q : ndarray, shape (k, n)
+        The unknown coordinates at n positions (float64, or numpy.longdouble for extended precision).
+    phi : ndarray, shape (n,)
+        Crank angles φ (rad).
+    """
+    return _jacobian(constraints, q, phi)
+
+
+def linear_solve(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """Solve ``matrix · x = rhs`` at every position: matrix (n, k, k), rhs (n, k) → x (n, k).
+
+    In double precision by LAPACK (``numpy.linalg.solve``); in any other float type (extended
+    precision: ``numpy.longdouble``, which LAPACK does not take) by Gaussian elimination with partial
+    pivoting, vectorized over the positions. A singular matrix gives non-finite values.
+    """
+    if matrix.dtype == np.float64 and rhs.dtype == np.float64:
+        with np.errstate(all="ignore"):
+            try:
+                return np.linalg.solve(matrix, rhs[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                return np.full_like(rhs, np.nan)
+    a, b = matrix.copy(), rhs.copy()
+    rows = np.arange(a.shape[0])
+    size = a.shape[-1]
+    with np.errstate(all="ignore"):
+        for col in range(size):
+            pivot = col + np.argmax(np.abs(a[:, col:, col]), axis=1)
+            a[rows, col], a[rows, pivot] = a[rows, pivot].copy(), a[rows, col].copy()
+            b[rows, col], b[rows, pivot] = b[rows, pivot].copy(), b[rows, col].copy()
+            for r in range(col + 1, size):
+                factor = a[:, r, col] / a[:, col, col]
+                a[:, r, col:] -= factor[:, None] * a[:, col, col:]
+                b[:, r] -= factor * b[:, col]
+        x = np.empty_like(b)
+        for r in reversed(range(size)):
+            x[:, r] = (b[:, r] - (a[:, r, r + 1:] * x[:, r + 1:]).sum(axis=1)) / a[:, r, r]
+    return x
+
+
+def newton_steps(constraints: Constraints, q: np.ndarray, phi: np.ndarray, steps: int) -> np.ndarray:
+    """A fixed number of Newton steps ``q ← q − Φ_q⁻¹ Φ`` from q (k, n), in the float type of q.
+
+    For a reference in extended precision (the benchmark's): from a double-precision solution two
+    steps reach the round-off of ``numpy.longdouble``, Newton's method converging quadratically.
+    """
+    for _ in range(steps):
+        residual, jac = _jacobian(constraints, q, phi)
+        q = q - linear_solve(jac, residual).T
+    return q
+
+
+def rates(constraints: Constraints, q: np.ndarray, phi: np.ndarray, omega: ArrayLike, alpha: ArrayLike, order: int,
+          jac: np.ndarray | None = None) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """Velocities and accelerations ``(q_t, q_tt)`` (k, n) of the coordinates q, in the float type of q.
+
+    ``Φ_q q_t = −Φ_φ φ_t``; ``Φ_q q_tt = −(d²Φ/dt²)|_{q_tt = 0}``, the constraints differentiated twice
+    along the motion with exact derivatives (jets); ``None`` above ``order``.
+    """
+    if order < 1:
+        return None, None
+    if jac is None:
+        _, jac = _jacobian(constraints, q, phi)
+    omega = np.broadcast_to(np.asarray(omega, dtype=q.dtype), phi.shape)
+    alpha = np.broadcast_to(np.asarray(alpha, dtype=q.dtype), phi.shape)
+    rate = _evaluate(constraints, [Jet(qi) for qi in q], Jet(phi, omega))
+    rhs = -np.stack([np.broadcast_to(r.d1 if isinstance(r, Jet) else 0.0, phi.shape) for r in rate], -1)
+    q_t = linear_solve(jac, rhs.astype(q.dtype)).T
+    if order < 2:
+        return q_t, None
+    path = _evaluate(constraints, [Jet(qi, vi) for qi, vi in zip(q, q_t)], Jet(phi, omega, alpha))
+    rhs = -np.stack([np.broadcast_to(r.d2 if isinstance(r, Jet) else 0.0, phi.shape) for r in path], -1)
+    return q_t, linear_solve(jac, rhs.astype(q.dtype)).T
+
+
 def _newton(constraints, q, phi, tol, max_iter):
     """Vectorized Newton iterations from the guess q (k, n); returns q and the iterations used."""
     for iteration in range(1, max_iter + 1):
         residual, jac = _jacobian(constraints, q, phi)
-        with np.errstate(all="ignore"):
-            try:
-                step = np.linalg.solve(jac, residual[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                step = np.full_like(residual, np.nan)
+        step = linear_solve(jac, residual)
         q = q - step.T
         size = np.max(np.abs(step), axis=-1)
         bad = ~np.isfinite(size)
@@ -159,17 +240,7 @@ def solve_constraints(constraints: Constraints, guess: ArrayLike, phi: ArrayLike
     else:
         q, iterations = _continue(constraints, guess, phi, tol, max_iter, max_step)
     residual, jac = _jacobian(constraints, q, phi)
-    q_t = q_tt = None
-    if order >= 1:
-        omega = np.broadcast_to(np.asarray(omega, dtype=float), phi.shape)
-        alpha = np.broadcast_to(np.asarray(alpha, dtype=float), phi.shape)
-        rate = _evaluate(constraints, [Jet(qi) for qi in q], Jet(phi, omega))
-        rhs = -np.stack([np.broadcast_to(r.d1 if isinstance(r, Jet) else 0.0, phi.shape) for r in rate], -1)
-        q_t = np.linalg.solve(jac, rhs[..., None])[..., 0].T
-        if order == 2:
-            path = _evaluate(constraints, [Jet(qi, vi) for qi, vi in zip(q, q_t)], Jet(phi, omega, alpha))
-            rhs = -np.stack([np.broadcast_to(r.d2 if isinstance(r, Jet) else 0.0, phi.shape) for r in path], -1)
-            q_tt = np.linalg.solve(jac, rhs[..., None])[..., 0].T
+    q_t, q_tt = rates(constraints, q, phi, omega, alpha, order, jac)
     return GenericSolution(q, q_t, q_tt, iterations, float(np.max(np.abs(residual))))
 
 
