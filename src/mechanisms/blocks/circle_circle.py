@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,7 +27,7 @@ from ..core.validate import require_branch, require_length
 from ..core.angles import angle_of_fast
 from ..core.motion import AngleMotion, PointMotion
 
-__all__ = ["Hinge", "hinge", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
+__all__ = ["Hinge", "hinge", "hinge_plain", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
 
 ASSEMBLY_TOLERANCE = 1e-12
 """Relative overlap of the circles accepted as touching (round-off), as a fraction of L_p + L_q."""
@@ -88,6 +88,90 @@ def _assembly_failure(distance, shape, total: float, difference: float, toleranc
     raise AssemblyError(reason, None if where is None else where[far | near])
 
 
+def _one_position(solve: Callable[..., Hinge], p: PointMotion, q: PointMotion, length_p: float, length_q: float,
+                  branch: int | np.ndarray, angles: ArrayLike | None) -> Hinge:
+    """One position: solved as an array of one, returned as numbers."""
+    one = solve(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles)
+    return Hinge(one.point[0], one.angle_p[0], one.angle_q[0], one.singular[0])
+
+
+def _checked(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray,
+             angles: ArrayLike | None) -> tuple[float, float, Any, np.ndarray, np.ndarray]:
+    """The hinge's inputs checked: the lengths, the side(s) as floats, ``d = q − p`` and ``D = |d|``.
+
+    Raises :class:`AssemblyError` naming the crank angles where the circles do not meet.
+    """
+    length_p = require_length("length_p", length_p)
+    length_q = require_length("length_q", length_q)
+    branch_array = np.asarray(branch)
+    side: Any
+    if branch_array.ndim == 0:
+        side = float(require_branch(branch))
+    else:
+        valid = (branch_array == 1) | (branch_array == -1)
+        if not valid.all():
+            require_branch(branch_array[~valid].ravel()[0].item())
+        side = branch_array.astype(float)
+    d = q.value - p.value
+    distance = np.abs(d)
+    total = length_p + length_q
+    difference = abs(length_p - length_q)
+    tolerance = ASSEMBLY_TOLERANCE * total
+    # the extremes decide whether any position fails; the masks are made only then
+    shortest, longest = (np.min(distance), np.max(distance)) if distance.size else (1.0, 0.0)
+    if shortest <= tolerance * 1e-3 or shortest - difference < -tolerance or total - longest < -tolerance:
+        _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
+    return length_p, length_q, side, d, distance
+
+
+def hinge_plain(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray = 1,
+                angles: ArrayLike | None = None) -> Hinge:
+    """:func:`hinge` written as the book writes it: the same formulas, plain numpy, no speed tricks.
+
+    The book shows this form; :func:`hinge`, which the mechanisms use, computes the same numbers
+    in place (fewer temporaries stay in the processor's cache, chapter 8's appendix) and the tests
+    compare the two. Parameters, results and errors are those of :func:`hinge`.
+    """
+    if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:
+        return _one_position(hinge_plain, p, q, length_p, length_q, branch, angles)
+    length_p, length_q, side, d, distance = _checked(p, q, length_p, length_q, branch, angles)
+    total, difference = length_p + length_q, abs(length_p - length_q)
+    # twice = 2·h·D by Heron, the small factors near a limit clipped at zero against round-off
+    twice = (np.sqrt(np.maximum(total - distance, 0.0) * (total + distance))
+             * np.sqrt(np.maximum(distance - difference, 0.0) * (distance + difference)))
+    singular = twice <= 2.0 * SINGULAR_TOLERANCE * length_p * length_q
+    # J = p + (m + i·branch·h)·d/D: m/D = (1 + (L_p² − L_q²)/D²)/2, h/D = h·D/D²
+    foot = 0.5 * (1.0 + (length_p - length_q) * (length_p + length_q) / distance**2)
+    height = 0.5 * side * twice / distance**2
+    arm_p = (foot + 1j * height) * d
+    point = p.value + arm_p
+    arm_q = point - q.value
+    theta_p, theta_q = np.angle(arm_p), np.angle(arm_q)
+    order = min(p.order, q.order)
+    if order == 0:
+        return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
+    det = 0.5 * side * twice                             # r_p × r_q = branch·h·D
+
+    def dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+        return (np.conj(u) * v).real
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # iω_p r_p − iω_q r_q = v_q − v_p, by Cramer's rule
+        rhs = q.velocity - p.velocity
+        omega_p = np.where(singular, np.nan, dot(arm_q, rhs) / det)
+        omega_q = np.where(singular, np.nan, dot(arm_p, rhs) / det)
+        velocity = p.velocity + 1j * omega_p * arm_p
+        if order == 1:
+            return Hinge(PointMotion(point, velocity), AngleMotion(theta_p, omega_p),
+                         AngleMotion(theta_q, omega_q), singular)
+        # iα_p r_p − iα_q r_q = a_q − a_p + ω_p² r_p − ω_q² r_q
+        rhs = q.acceleration - p.acceleration + omega_p**2 * arm_p - omega_q**2 * arm_q
+        alpha_p, alpha_q = dot(arm_q, rhs) / det, dot(arm_p, rhs) / det
+        acceleration = p.acceleration + (1j * alpha_p - omega_p**2) * arm_p
+    return Hinge(PointMotion(point, velocity, acceleration), AngleMotion(theta_p, omega_p, alpha_p),
+                 AngleMotion(theta_q, omega_q, alpha_q), singular)
+
+
 def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray = 1,
           angles: ArrayLike | None = None) -> Hinge:
     """Solve two links meeting at a hinge: J with |J − p| = L_p and |J − q| = L_q.
@@ -131,35 +215,16 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     with the determinant ``r_p × r_q`` = L_p L_q sin(θ_q − θ_p), zero where the links are in line
     (chapter 4; the lecture's crank-rocker is the case p = A, q = C).
     """
-    length_p = require_length("length_p", length_p)
-    length_q = require_length("length_q", length_q)
-    branch_array = np.asarray(branch)
-    side: Any
-    if branch_array.ndim == 0:
-        side = float(require_branch(branch))
-    else:
-        valid = (branch_array == 1) | (branch_array == -1)
-        if not valid.all():
-            require_branch(branch_array[~valid].ravel()[0].item())
-        side = branch_array.astype(float)
     if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:
-        # one position: solved as an array of one, returned as numbers
-        one = hinge(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles)
-        return Hinge(one.point[0], one.angle_p[0], one.angle_q[0], one.singular[0])
+        return _one_position(hinge, p, q, length_p, length_q, branch, angles)
+    length_p, length_q, side, d, distance = _checked(p, q, length_p, length_q, branch, angles)
     order = min(p.order, q.order)
-    d = q.value - p.value
-    distance = np.abs(d)
-    total = length_p + length_q
-    difference = abs(length_p - length_q)
-    tolerance = ASSEMBLY_TOLERANCE * total
-    # the extremes decide whether any position fails; the masks are made only then
-    shortest, longest = (np.min(distance), np.max(distance)) if distance.size else (1.0, 0.0)
-    if shortest <= tolerance * 1e-3 or shortest - difference < -tolerance or total - longest < -tolerance:
-        _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
+    total, difference = length_p + length_q, abs(length_p - length_q)
     # Heron's product h·D, its two small factors near a limit computed directly and clipped at
     # zero against round-off (the limits were checked above); two square roots of products of
     # two lengths each keep it in range for lengths from 1e-150 m to 1e150 m. twice = 2·h·D.
-    # The arrays are computed in place: fewer temporaries stay in the processor's cache (chapter 8).
+    # The arrays are computed in place: fewer temporaries stay in the processor's cache (the plain
+    # form of the same formulas is hinge_plain; chapter 8's appendix measures what this buys).
     far = np.subtract(total, distance)
     np.maximum(far, 0.0, out=far)
     scratch = np.add(distance, total)
