@@ -10,7 +10,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import mechanisms as mech
-from mechanisms.core.angles import angle_of_fast, constant, unit_vector_fast
+from mechanisms.core.angles import constant, unit_vector_fast
 from mechanisms.core.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point, plane_motion,
                                     point_on_link, polar, translated_point)
 from strategies import angles, coordinates, lengths, points, rates
@@ -225,15 +225,6 @@ def test_unit_vector_from_the_half_angle_is_round_off(span, length):
     assert np.max(np.abs(u.real - length * np.cos(exact))) <= bound
     assert np.max(np.abs(u.imag - length * np.sin(exact))) <= bound
     assert unit_vector_fast(np.float64(1.0), length) == pytest.approx(length * np.exp(1j), abs=bound)
-
-
-def test_angle_of_equals_numpys_angle():
-    # expected: np.angle, including the signs of zero and the axes
-    z = np.array([1 + 0j, -1 + 0j, complex(-1, -0.0), 1j, -1j, 0j, complex(0.0, -0.0), 3 - 4j])
-    z = np.concatenate([z, np.random.default_rng(9).normal(size=1000) + 1j * np.random.default_rng(10).normal(size=1000)])
-    np.testing.assert_array_equal(angle_of_fast(z), np.angle(z))
-    np.testing.assert_array_equal(angle_of_fast(z[::3]), np.angle(z[::3]))
-    assert angle_of_fast(np.complex128(-1j)) == np.angle(-1j)
 
 
 def test_harmonic_law_against_hand_derivatives():

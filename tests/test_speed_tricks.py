@@ -2,7 +2,6 @@
 
 * ``hinge`` (in place) against ``hinge_plain`` (the book's formulas in plain numpy);
 * ``unit_vector_fast`` (tangent of the half angle) against ``unit_vector`` (``exp(iθ)``);
-* ``angle_of_fast`` (contiguous atan2) against ``angle_of`` (``np.angle``): equal bit for bit;
 * solving in chunks (``linkages.chunks``) against solving all positions at once.
 """
 
@@ -15,7 +14,7 @@ from hypothesis import strategies as st
 import mechanisms as mech
 from mechanisms.blocks.circle_circle import hinge, hinge_plain
 from mechanisms.blocks.crank import crank_angle, crank_pin
-from mechanisms.core.angles import angle_of, angle_of_fast, unit_vector, unit_vector_fast
+from mechanisms.core.angles import unit_vector, unit_vector_fast
 from mechanisms.core.motion import fixed_point
 from strategies import crank_rockers, finite
 
@@ -47,12 +46,6 @@ def test_unit_vector_from_the_half_angle_is_round_off_of_the_plain_one(span, len
     phi = np.linspace(-span, span, 101)
     # 2.5 ulp per component (the tangent, the square, the division) plus the plain form's 0.5 ulp
     np.testing.assert_allclose(unit_vector_fast(phi, length), unit_vector(phi, length), rtol=0, atol=4 * EPS * length)
-
-
-def test_contiguous_atan2_is_numpys_angle_bit_for_bit():
-    z = np.exp(1j * np.linspace(-10, 10, 1001)) * np.linspace(0.1, 3, 1001)
-    np.testing.assert_array_equal(angle_of_fast(z), angle_of(z))
-    np.testing.assert_array_equal(angle_of_fast(z[::7]), angle_of(z[::7]))
 
 
 def test_solving_in_chunks_equals_solving_at_once():

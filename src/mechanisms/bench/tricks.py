@@ -7,7 +7,6 @@ largest difference between their results (the tests bound it: ``tests/test_speed
 * the hinge in place (:func:`~mechanisms.blocks.circle_circle.hinge`) against the book's formulas in
   plain numpy (:func:`~mechanisms.blocks.circle_circle.hinge_plain`), at order 2;
 * the unit vector from the tangent of the half angle against ``exp(iθ)``;
-* ``atan2`` of contiguous copies against ``np.angle``;
 * a four-bar solved in cache-sized chunks (:mod:`mechanisms.linkages.chunks`) against all at once.
 """
 
@@ -22,7 +21,7 @@ import numpy as np
 
 from ..blocks.circle_circle import hinge, hinge_plain
 from ..blocks.crank import crank_angle, crank_pin
-from ..core.angles import angle_of, angle_of_fast, unit_vector, unit_vector_fast
+from ..core.angles import unit_vector, unit_vector_fast
 from ..core.motion import fixed_point
 from ..linkages.four_bar import FourBar
 from .benchmark import best_time, machine_description
@@ -48,12 +47,10 @@ def measure_tricks(positions: int = 1_000_000, repeat: int = 5) -> dict:
     crank = crank_angle(phi, 1.0, 0.0, 2)
     pin = crank_pin(crank, 1.0)
     pivot = fixed_point(4.0 + 0j, phi)
-    z = np.exp(1j * phi) * 2.0
     cases: list[tuple[str, Callable[[], Any], Callable[[], Any], Callable[[Any], Any]]] = [
         ("hinge in place (order 2)", lambda: hinge(pin, pivot, 3.5, 3.0), lambda: hinge_plain(pin, pivot, 3.5, 3.0),
          lambda h: h.angle_q.acceleration),
         ("unit vector from tan(θ/2)", lambda: unit_vector_fast(phi), lambda: unit_vector(phi), lambda u: u),
-        ("contiguous atan2", lambda: angle_of_fast(z), lambda: angle_of(z), lambda a: a),
         ("four-bar in chunks (order 2)", lambda: four_bar.solve(phi), lambda: four_bar._solve_block(crank, 2),
          lambda s: s.angle("rocker").acceleration),
     ]

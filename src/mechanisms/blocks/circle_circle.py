@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike
 
 from ..core.errors import AssemblyError
 from ..core.validate import require_branch, require_length
-from ..core.angles import angle_of_fast
+from ..core.angles import angle_of
 from ..core.motion import AngleMotion, PointMotion
 
 __all__ = ["Hinge", "hinge", "hinge_plain", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
@@ -247,7 +247,7 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     arm_p *= d
     point = p.value + arm_p
     arm_q = np.subtract(point, q.value, out=d)          # r_q = J − q (d is not needed any more)
-    theta_p, theta_q = angle_of_fast(arm_p), angle_of_fast(arm_q)
+    theta_p, theta_q = angle_of(arm_p), angle_of(arm_q)
     if order == 0:
         return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
     any_singular = singular.any()

@@ -3,11 +3,10 @@
 Every angle the package reduces is reduced to (−π, π] by :func:`wrap_angle` (degrees: (−180°, 180°]
 by :func:`wrap_degrees`); nothing else in the package wraps angles its own way.
 
-Two speed tricks live here beside the plain forms the book shows (chapter 8 and the appendix on
-speed measure what they buy; the tests compare each with its plain form):
+A speed trick lives here beside the plain form the book shows (chapter 8 and the appendix on speed
+measure what it buys; the tests compare the two):
 
 * :func:`unit_vector_fast` — ``exp(iθ)`` from the tangent of the half angle, beside :func:`unit_vector`;
-* :func:`angle_of_fast` — ``atan2`` of contiguous copies of the components, beside :func:`angle_of`.
 """
 
 from __future__ import annotations
@@ -21,7 +20,6 @@ __all__ = [
     "wrap_angle",
     "wrap_degrees",
     "angle_of",
-    "angle_of_fast",
     "unit_vector",
     "unit_vector_fast",
     "constant",
@@ -66,18 +64,6 @@ def wrap_degrees(angle: ArrayLike) -> np.ndarray:
 def angle_of(z: ArrayLike) -> np.ndarray:
     """The direction of plane vectors ``z = x + iy`` (rad, in (−π, π]): ``arg z = atan2(y, x)``."""
     return np.asarray(np.angle(np.asarray(z)))
-
-
-def angle_of_fast(z: ArrayLike) -> np.ndarray:
-    """:func:`angle_of`, bit for bit, at about half the cost for long complex arrays.
-
-    numpy evaluates ``atan2`` in vector instructions only on contiguous arrays; the real and
-    imaginary parts of a complex array are strided views, so they are copied first (chapter 8).
-    """
-    z = np.asarray(z)
-    if z.dtype != np.complex128 or z.ndim == 0:
-        return np.angle(z)
-    return np.arctan2(np.ascontiguousarray(z.imag), np.ascontiguousarray(z.real))
 
 
 def unit_vector(angle: ArrayLike, length: float = 1.0) -> np.ndarray:

@@ -15,6 +15,7 @@ __all__ = [
     "MechanismError",
     "InvalidParameterError",
     "AssemblyError",
+    "MissingDerivativeError",
     "DeadCentreWarning",
     "describe_angles",
     "describe_range",
@@ -68,6 +69,30 @@ class AssemblyError(MechanismError, ValueError):
         if valid_range is not None:
             message += f"; it assembles only for crank angles in {describe_range(*valid_range)}"
         super().__init__(message)
+
+
+class MissingDerivativeError(MechanismError, TypeError):
+    """A velocity or an acceleration was asked for that the solution did not compute.
+
+    A solution computes the time derivatives up to the ``order`` it was solved with (0 positions,
+    1 velocities, 2 accelerations); the missing ones are ``None`` in :class:`~mechanisms.core.motion.Motion`,
+    and :attr:`~mechanisms.core.motion.Motion.d1` and :attr:`~mechanisms.core.motion.Motion.d2` raise this
+    error instead of returning them. It is also a :class:`TypeError`, the error that arithmetic on the
+    missing ``None`` raised before, so a caller that caught that still catches it.
+
+    Parameters
+    ----------
+    needed : int
+        The derivative asked for: 1 (velocity) or 2 (acceleration).
+    order : int
+        The order of the motion that was asked, 0 or 1.
+    """
+
+    def __init__(self, needed: int, order: int):
+        self.needed = needed
+        self.order = order
+        what, solve = ("velocities", "order ≥ 1") if needed == 1 else ("accelerations", "order=2")
+        super().__init__(f"{what} were not computed: solve with {solve} (this motion has order={order})")
 
 
 class DeadCentreWarning(UserWarning):

@@ -20,7 +20,7 @@ from typing import Any, Self
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .angles import angle_of_fast, constant, unit_vector_fast
+from .angles import angle_of, constant, unit_vector_fast
 
 __all__ = [
     "Motion",
@@ -326,7 +326,7 @@ def polar(vector: PointMotion) -> tuple[Motion, AngleMotion]:
     """
     d = vector.value
     length = np.abs(d)
-    direction = angle_of_fast(d)
+    direction = angle_of(d)
     if vector.order == 0:
         return Motion(length), AngleMotion(direction)
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -1,4 +1,4 @@
-"""Layer 3 helper: solve a long array of crank positions block by block, in the processor's cache.
+"""Layer 3 helper: solve a long array of crank positions in chunks that fit the processor's cache.
 
 A closed form is a chain of some dozens of array operations. Over a million positions each
 operation writes an array of 8–16 MB and the next one reads it back: far more than the
@@ -21,7 +21,7 @@ from ..core.errors import AssemblyError
 from ..core.angles import constant
 from ..core.motion import AngleMotion, Motion, PointMotion
 
-__all__ = ["BLOCK", "solve_in_blocks"]
+__all__ = ["BLOCK", "solve_in_chunks", "solve_in_blocks"]
 
 BLOCK = 32768
 """Positions per block: a complex temporary of a block is 512 kB, and the some dozen that a
@@ -113,7 +113,7 @@ def _constant(array: np.ndarray) -> bool:
     return array.ndim == 1 and array.strides[0] == 0 and array.size > 0
 
 
-def solve_in_blocks(solve: Callable[[AngleMotion, int], Solution], crank: AngleMotion, order: int,
+def solve_in_chunks(solve: Callable[[AngleMotion, int], Solution], crank: AngleMotion, order: int,
                     links: dict[str, str], block: int = BLOCK) -> Solution:
     """``solve(crank, order)`` over blocks of at most ``block`` positions, gathered into one solution.
 
@@ -154,3 +154,7 @@ def solve_in_blocks(solve: Callable[[AngleMotion, int], Solution], crank: AngleM
         return solve(crank, order)
     assert gather is not None   # more than four blocks: the loop ran
     return gather.solution(crank, order, links)
+
+
+solve_in_blocks = solve_in_chunks
+"""The name of :func:`solve_in_chunks` in version 0.1 (kept for one release)."""

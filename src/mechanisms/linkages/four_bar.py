@@ -21,7 +21,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .chunks import solve_in_blocks
+from .chunks import solve_in_chunks
 from ..core.angles import wrap_angle
 from .groups import RRR, Crank, Group
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
@@ -330,7 +330,7 @@ class FourBar(Mechanism):
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         # long arrays block by block, in the processor's cache (chapter 8)
-        return solve_in_blocks(self._solve_block, crank, order, self.links)
+        return solve_in_chunks(self._solve_block, crank, order, self.links)
 
     def _solve_block(self, crank: AngleMotion, order: int) -> Solution:
         phi = crank.value

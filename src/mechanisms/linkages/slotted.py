@@ -25,7 +25,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .chunks import solve_in_blocks
+from .chunks import solve_in_chunks
 from .groups import RPR, RRP, Crank, Group, LinkPoint
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_line import slider_on_line
@@ -114,7 +114,7 @@ class SlottedLever(Mechanism):
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         # long arrays block by block, in the processor's cache (chapter 8)
-        return solve_in_blocks(self._solve_block, crank, order, self.links)
+        return solve_in_chunks(self._solve_block, crank, order, self.links)
 
     def _solve_block(self, crank: AngleMotion, order: int) -> Solution:
         pin, block = _lever_part(crank, self.crank, self.pivot_point, self.kind)

@@ -7,7 +7,7 @@ lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors 
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Sequence
 
 import matplotlib
 
@@ -23,6 +23,7 @@ from .workarounds import offline_jshtml, skip_idle_redraw
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = [
     "ROLE_COLOURS",
@@ -83,7 +84,7 @@ def use_book_style() -> None:
 use_book_style()
 
 
-def _new_axes(ax, equal: bool = True):
+def _new_axes(ax: Axes | None, equal: bool = True) -> Axes:
     if ax is None:
         _, ax = plt.subplots()
     if equal:
@@ -91,7 +92,7 @@ def _new_axes(ax, equal: bool = True):
     return ax
 
 
-def _pivot_symbol(ax, point: complex, size: float) -> None:
+def _pivot_symbol(ax: Axes, point: complex, size: float) -> None:
     """A frame pivot: a small triangle on a hatched base."""
     x, y = point.real, point.imag
     triangle = Polygon([(x, y), (x - size, y - 1.6 * size), (x + size, y - 1.6 * size)], closed=True,
@@ -101,7 +102,7 @@ def _pivot_symbol(ax, point: complex, size: float) -> None:
                            edgecolor=ROLE_COLOURS["frame"], hatch="////", lw=0.0, zorder=1))
 
 
-def _guide_symbol(ax, through: complex, angle: float, half_length: float, size: float) -> None:
+def _guide_symbol(ax: Axes, through: complex, angle: float, half_length: float, size: float) -> None:
     direction = np.exp(1j * angle)
     normal = 1j * direction
     a, b = through - half_length * direction, through + half_length * direction
@@ -119,7 +120,7 @@ def _block_corners(centre: complex, angle: float, size: float) -> list[tuple[flo
     return [(c.real, c.imag) for c in corners]
 
 
-def _block_symbol(ax, centre: complex, angle: float, size: float) -> None:
+def _block_symbol(ax: Axes, centre: complex, angle: float, size: float) -> None:
     ax.add_patch(Polygon(_block_corners(centre, angle, size), closed=True, facecolor="#efe7f7",
                          edgecolor=ROLE_COLOURS["slider"], lw=1.5, zorder=3))
 
@@ -225,7 +226,7 @@ def annotate_dimension(ax: Axes, start: complex, end: complex, label: str, both:
 
 
 def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[int] | None = None,
-                   ax: Axes | None = None, paths: dict[str, PointMotion] | None = None, **draw_options) -> Axes:
+                   ax: Axes | None = None, paths: dict[str, PointMotion] | None = None, **draw_options: Any) -> Axes:
     """A family of positions: the mechanism drawn at several crank angles, over point paths.
 
     Parameters
@@ -342,7 +343,7 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axe
     return ax
 
 
-def _to_html(fig, frame, count: int, interval: int) -> str:
+def _to_html(fig: Figure, frame: Callable[[int], None], count: int, interval: int) -> str:
     """Run ``frame(k)`` for k = 0 … count−1 into an HTML/JavaScript animation; close the figure."""
     fig.set_dpi(ANIMATION_DPI)
     skip_idle_redraw(fig)
@@ -388,7 +389,7 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dic
     pts = np.concatenate([np.ravel(solution.point(p).value) for p in solution.point_names])
     limits = _limits(pts, 0.12 * _extent(solution))
 
-    def frame(k):
+    def frame(k: int) -> None:
         ax.clear()
         if paths:
             trajectories(solution, paths if isinstance(paths, dict) else list(paths), ax=ax,
@@ -462,7 +463,7 @@ def animate_links(links: dict[str, tuple[PointMotion, PointMotion, str]], times:
     everything = np.concatenate([np.concatenate([p.value, q.value]) for p, q, _ in links.values()])
     limits = _limits(everything, 0.08 * (np.ptp(everything.real) + np.ptp(everything.imag)))
 
-    def frame(k):
+    def frame(k: int) -> None:
         ax.clear()
         for label, (p, q, role) in links.items():
             ax.plot([p.value[k].real, q.value[k].real], [p.value[k].imag, q.value[k].imag],

@@ -43,7 +43,7 @@ _STYLE = {  # kind → (line style, line width)
 _LABEL_BOX = {"boxstyle": "round,pad=0.12", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
 
 
-def _arrow(ax, tail: complex, head: complex, colour: str, style: str, width: float, zorder: int = 3) -> None:
+def _arrow(ax: Axes, tail: complex, head: complex, colour: str, style: str, width: float, zorder: int = 3) -> None:
     ax.annotate("", xy=(head.real, head.imag), xytext=(tail.real, tail.imag),
                 arrowprops={"arrowstyle": "-|>", "color": colour, "lw": width, "linestyle": style,
                             "shrinkA": 0, "shrinkB": 0, "mutation_scale": 12}, zorder=zorder)
@@ -160,7 +160,7 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     return fig, axes
 
 
-def _extend(ax, first: complex, second: complex, beyond: float = 0.15) -> None:
+def _extend(ax: Axes, first: complex, second: complex, beyond: float = 0.15) -> None:
     """A thin dotted line through two points, a little beyond both."""
     d = second - first
     a, b = first - beyond * d, second + beyond * d

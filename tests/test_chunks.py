@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import mechanisms as mech
-from mechanisms.linkages.chunks import BLOCK, solve_in_blocks
+from mechanisms.linkages.chunks import BLOCK, solve_in_chunks
 from mechanisms.blocks.crank import crank_angle
 from mechanisms.core.motion import fixed_point
 from mechanisms.core.errors import AssemblyError, DeadCentreWarning
@@ -50,7 +50,7 @@ def test_blocks_equal_the_whole_array(index, order):
     phi = np.linspace(0.1, 4.0 * np.pi + 0.1, N)      # two turns
     crank = crank_angle(phi, 3.0, 0.5, order)
     whole = m._solve_block(crank, order)
-    blocks = solve_in_blocks(m._solve_block, crank, order, m.links)
+    blocks = solve_in_chunks(m._solve_block, crank, order, m.links)
     assert_same(blocks, whole)
     assert blocks.phi is crank.value and blocks.angle("crank") is crank
 
@@ -59,7 +59,7 @@ def test_short_arrays_are_solved_at_once():
     m = mech.FourBar(1.0, 3.5, 3.0, (4.0, 0.0))
     crank = crank_angle(np.linspace(0.0, 1.0, 4 * BLOCK), 1.0, 0.0, 2)
     calls = []
-    solve_in_blocks(lambda c, o: calls.append(c) or m._solve_block(c, o), crank, 2, m.links)
+    solve_in_chunks(lambda c, o: calls.append(c) or m._solve_block(c, o), crank, 2, m.links)
     assert len(calls) == 1
 
 
@@ -104,7 +104,7 @@ def test_a_number_that_changes_between_blocks_becomes_an_array():
         point = mech.PointMotion(fixed_point(number, crank.value, 0).value)
         return mech.Solution(crank.value, order, angles={"crank": crank}, points={"P": point}, links={})
 
-    sol = solve_in_blocks(solve, crank_angle(phi, 1.0, 0.0, 0), 0, {})
+    sol = solve_in_chunks(solve, crank_angle(phi, 1.0, 0.0, 0), 0, {})
     expected = np.where(np.arange(N) >= first_one, 1.0 + 0j, 0j)
     np.testing.assert_array_equal(sol.point("P").value, expected)
     assert 0 < first_one < N - BLOCK
