@@ -242,3 +242,20 @@ def test_link_types_cover_the_lecture():
     assert mech.link_type("slider").russian == "ползун"
     with pytest.raises(KeyError, match="known: frame"):
         mech.link_type("cam")
+
+
+def test_derivatives_read_as_arrays_or_a_clear_error():
+    # d1 and d2 are the velocity and acceleration themselves when computed, and the package's error
+    # (also a TypeError, as arithmetic on a missing None would raise) when not; omega/alpha stay None
+    from mechanisms.core.errors import MissingDerivativeError
+    rates = np.array([1.0, 2.0])
+    full = AngleMotion(np.array([0.1, 0.2]), rates, rates * 3)
+    assert full.d1 is full.velocity and full.d2 is full.acceleration
+    positions_only = AngleMotion(np.array([0.1]))
+    with pytest.raises(MissingDerivativeError, match="order ≥ 1"):
+        positions_only.d1
+    with pytest.raises(TypeError):
+        positions_only.d1
+    with pytest.raises(MissingDerivativeError, match="order=2"):
+        AngleMotion(np.array([0.1]), np.array([1.0])).d2
+    assert positions_only.omega is None and positions_only.alpha is None

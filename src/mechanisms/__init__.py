@@ -21,7 +21,8 @@ from typing import Any
 
 from . import _moved, core, verify
 from .core import motion
-from .core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError
+from .core.errors import (AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError,
+                          MissingDerivativeError)
 from .core.links import LINK_TYPES, LinkType, harmonic, link_type
 from .core.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point, plane_motion, point_on_link,
                           polar, translated_point)
@@ -34,7 +35,7 @@ __all__ = [
     # layer 1
     "Motion", "AngleMotion", "PointMotion", "fixed_point", "plane_motion", "point_on_link", "lagrange_point",
     "translated_point", "polar", "LINK_TYPES", "LinkType", "harmonic", "link_type",
-    "MechanismError", "InvalidParameterError", "AssemblyError", "DeadCentreWarning",
+    "MechanismError", "InvalidParameterError", "AssemblyError", "DeadCentreWarning", "MissingDerivativeError",
     # layer 3
     "Mechanism", "Solution", "registry",
     # layers 5 and 6

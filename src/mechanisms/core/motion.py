@@ -9,7 +9,9 @@ so the plane-motion formulas of the lecture read as in the book (chapter 1):
 * Lagrange form: the point's coordinates (α, β) in the reference position, turned by Δθ
   about the moving pole.
 
-Derivatives that were not asked for are ``None``: a trajectory needs positions only.
+Derivatives that were not asked for are ``None``: a trajectory needs positions only. A formula
+that needs one reads it as :attr:`Motion.d1` or :attr:`Motion.d2`, an array, or
+:class:`~mechanisms.core.errors.MissingDerivativeError` if it was not computed.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .angles import angle_of, constant, unit_vector_fast
+from .errors import MissingDerivativeError
 
 __all__ = [
     "Motion",
@@ -36,9 +39,11 @@ __all__ = [
 
 Derivative = Any
 """A time derivative over the crank positions: an ndarray, or ``None`` where it was not computed (the
-motion's :attr:`Motion.order` says which). Typed ``Any`` on purpose: the package computes a derivative
+motion's :attr:`Motion.order` says which). Typed ``Any`` for now: the package computes a derivative
 only under ``order ≥ 1`` (or 2) and then uses it as an array, a fact of the algorithm that the type
-checker cannot follow through every block; the tests check it at every order."""
+checker cannot follow through every block; the tests check it at every order. Code that reads a
+derivative as an array reads :attr:`Motion.d1` / :attr:`Motion.d2` (typed ``ndarray``, checked);
+once every block does, this alias becomes ``np.ndarray | None``."""
 
 
 @dataclass(frozen=True)
@@ -66,37 +71,70 @@ class Motion:
             return 0
         return 1 if self.acceleration is None else 2
 
+    @property
+    def d1(self) -> np.ndarray:
+        """The first time derivative as an array (rad/s or m/s: φ_t of an angle φ): :attr:`velocity`, never ``None``.
+
+        Raises
+        ------
+        MissingDerivativeError
+            If velocities were not computed (a motion of order 0).
+        """
+        if self.velocity is None:
+            raise MissingDerivativeError(1, self.order)
+        return self.velocity
+
+    @property
+    def d2(self) -> np.ndarray:
+        """The second time derivative as an array (rad/s² or m/s²: φ_tt): :attr:`acceleration`, never ``None``.
+
+        Raises
+        ------
+        MissingDerivativeError
+            If accelerations were not computed (a motion of order 0 or 1).
+        """
+        if self.acceleration is None:
+            raise MissingDerivativeError(2, self.order)
+        return self.acceleration
+
     def derivatives(self) -> tuple[np.ndarray, Derivative, Derivative]:
         """Return ``(value, velocity, acceleration)``, the missing ones as ``None``."""
         return self.value, self.velocity, self.acceleration
 
-    def __getitem__(self, index) -> Self:
-        """The motion at some positions only (numpy indexing of every array)."""
-        return type(self)(*(None if d is None else np.asarray(d)[index] for d in self.derivatives()))
+    def __getitem__(self, index: Any) -> Self:
+        """The motion at some positions only (numpy indexing of every array; ``index`` is any numpy index)."""
+        velocity, acceleration = self.velocity, self.acceleration
+        return type(self)(np.asarray(self.value)[index],
+                          None if velocity is None else np.asarray(velocity)[index],
+                          None if acceleration is None else np.asarray(acceleration)[index])
 
     def truncated(self, order: int) -> Self:
         """The same motion with the derivatives above ``order`` dropped."""
         value, velocity, acceleration = self.derivatives()
         return type(self)(value, velocity if order >= 1 else None, acceleration if order >= 2 else None)
 
-    def _combine(self, other, sign: float) -> Self:
+    def _combine(self, other: Motion | complex | np.ndarray, sign: float) -> Self:
         if isinstance(other, Motion):
+            # the derivatives both motions have, up to the lower of their orders
             order = min(self.order, other.order)
-            parts = [a + sign * b if a is not None and b is not None else None
-                     for a, b in zip(self.derivatives(), other.derivatives())]
-            return type(self)(*parts).truncated(order)
+            return type(self)(self.value + sign * other.value,
+                              self.d1 + sign * other.d1 if order >= 1 else None,
+                              self.d2 + sign * other.d2 if order >= 2 else None)
         # a constant: only the value changes
         return type(self)(self.value + sign * other, self.velocity, self.acceleration)
 
-    def __add__(self, other) -> Self:
+    def __add__(self, other: Motion | complex | np.ndarray) -> Self:
         return self._combine(other, 1.0)
 
-    def __sub__(self, other) -> Self:
+    def __sub__(self, other: Motion | complex | np.ndarray) -> Self:
         return self._combine(other, -1.0)
 
     def __mul__(self, factor: float) -> Self:
         """Scale by a constant factor."""
-        return type(self)(*(None if d is None else d * factor for d in self.derivatives()))
+        velocity, acceleration = self.velocity, self.acceleration
+        return type(self)(self.value * factor,
+                          None if velocity is None else velocity * factor,
+                          None if acceleration is None else acceleration * factor)
 
     __rmul__ = __mul__
 
@@ -115,12 +153,12 @@ class AngleMotion(Motion):
 
     @property
     def omega(self) -> Derivative:
-        """Angular velocity (rad/s), counter-clockwise positive."""
+        """Angular velocity ω (rad/s), counter-clockwise positive; ``None`` if not computed (see :attr:`d1`)."""
         return self.velocity
 
     @property
     def alpha(self) -> Derivative:
-        """Angular acceleration (rad/s²)."""
+        """Angular acceleration α (rad/s²); ``None`` if not computed (see :attr:`d2`)."""
         return self.acceleration
 
     def unit(self) -> np.ndarray:
@@ -148,8 +186,14 @@ class PointMotion(Motion):
 
     @property
     def speed(self) -> np.ndarray:
-        """Magnitude of the velocity (m/s)."""
-        return np.abs(self.velocity)
+        """Magnitude of the velocity (m/s).
+
+        Raises
+        ------
+        MissingDerivativeError
+            If velocities were not computed.
+        """
+        return np.abs(self.d1)
 
 
 def fixed_point(position: complex, like: ArrayLike = 0.0, order: int = 2) -> PointMotion:
@@ -202,10 +246,11 @@ def plane_motion(pole: PointMotion, angle: AngleMotion, position: np.ndarray) ->
     if order == 0:
         return PointMotion(position)
     arm = position - pole.value
-    velocity = pole.velocity + 1j * angle.omega * arm
+    omega = angle.d1
+    velocity = pole.d1 + 1j * omega * arm
     if order == 1:
         return PointMotion(position, velocity)
-    acceleration = pole.acceleration + (1j * angle.alpha - angle.omega**2) * arm
+    acceleration = pole.d2 + (1j * angle.d2 - omega**2) * arm
     return PointMotion(position, velocity, acceleration)
 
 
@@ -236,12 +281,13 @@ def point_on_link(pole: PointMotion | complex, angle: AngleMotion, along: float,
         arm += complex(pole)             # r = r_P + arm, in place
         return PointMotion(arm)
     position = arm + complex(pole)
-    turn = 1j * angle.omega
+    omega = angle.d1
+    turn = 1j * omega
     velocity = turn * arm
     velocity += 0.0          # as plane_motion's v_P + …: no negative zeros
     if angle.order == 1:
         return PointMotion(position, velocity)
-    acceleration = (1j * angle.alpha - angle.omega**2) * arm
+    acceleration = (1j * angle.d2 - omega**2) * arm
     acceleration += 0.0
     return PointMotion(position, velocity, acceleration)
 
@@ -279,14 +325,16 @@ def lagrange_point(pole: PointMotion | complex, angle: AngleMotion, material: co
     order = min(pole.order, angle.order)
     if order == 0:
         return PointMotion(x + 1j * y)
-    w = angle.omega
-    vx = pole.velocity.real - w * (da * s + db * c)
-    vy = pole.velocity.imag + w * (da * c - db * s)
+    w = angle.d1
+    pole_velocity = pole.d1
+    vx = pole_velocity.real - w * (da * s + db * c)
+    vy = pole_velocity.imag + w * (da * c - db * s)
     if order == 1:
         return PointMotion(x + 1j * y, vx + 1j * vy)
-    e = angle.alpha
-    ax = pole.acceleration.real - e * dy - w**2 * dx
-    ay = pole.acceleration.imag + e * dx - w**2 * dy
+    e = angle.d2
+    pole_acceleration = pole.d2
+    ax = pole_acceleration.real - e * dy - w**2 * dx
+    ay = pole_acceleration.imag + e * dx - w**2 * dy
     return PointMotion(x + 1j * y, vx + 1j * vy, ax + 1j * ay)
 
 
@@ -331,12 +379,12 @@ def polar(vector: PointMotion) -> tuple[Motion, AngleMotion]:
         return Motion(length), AngleMotion(direction)
     with np.errstate(divide="ignore", invalid="ignore"):
         conj = np.conj(d)
-        first = conj * vector.velocity
+        first = conj * vector.d1
         length_t = first.real / length
         direction_t = first.imag / length**2
         if vector.order == 1:
             return Motion(length, length_t), AngleMotion(direction, direction_t)
-        second = conj * vector.acceleration
+        second = conj * vector.d2
         # (Re(d̄ d_tt) + |d_t|² − L_t²)/L with |d_t|² = L_t² + L²θ_t²: the form without cancellation
         length_tt = second.real / length + length * direction_t**2
         direction_tt = (second.imag - 2.0 * length * length_t * direction_t) / length**2
