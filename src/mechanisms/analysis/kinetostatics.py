@@ -32,7 +32,7 @@ import numpy as np
 
 from ..linkages.base import Mechanism, Solution
 from ..core.errors import InvalidParameterError, MechanismError
-from ..linkages.groups import RRP, RRR, Crank
+from ..linkages.groups import RRP, four_link
 from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, body_angle, body_point, centre_of_mass,
                      load_values)
 
@@ -209,11 +209,12 @@ def joint_forces(mechanism: Mechanism, solution: Solution, masses: Mapping[str, 
         raise MechanismError(f"joint forces need accelerations: solve with order=2 (got order={solution.order})")
     phi = solution.phi
     groups = mechanism.groups()
-    crank, dyad = (groups[0], groups[1]) if len(groups) == 2 else (None, None)
-    if not isinstance(crank, Crank) or not isinstance(dyad, (RRR, RRP)):
+    structure = four_link(groups)
+    if structure is None:
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
                                     "a crank and one RRR or RRP group, a four-bar or a crank-slider "
                                     "(kinetostatics is written for these two)")
+    crank, dyad = structure
     O, A, B = (solution.point(n).value for n in (crank.pivot, crank.pin, dyad.joint))
     if isinstance(dyad, RRP):
         # the slider is a body of its own, named by its joint; it translates along the guide

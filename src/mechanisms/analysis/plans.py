@@ -34,7 +34,7 @@ from typing import Mapping, Sequence, cast
 
 from ..linkages.base import Mechanism, Solution
 from ..core.errors import InvalidParameterError, MechanismError
-from ..linkages.groups import RPR, RRP, RRR, Crank, LinkPoint, link_numbers
+from ..linkages.groups import RPR, RRP, RRR, Crank, LinkPoint, four_link, link_numbers
 
 __all__ = [
     "PlanVector",
@@ -770,11 +770,12 @@ def instant_centres(mechanism: Mechanism, solution: Solution, index: int = 0) ->
     """
     where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
     groups = mechanism.groups()
-    crank, dyad = (groups[0], groups[1]) if len(groups) == 2 else (None, None)
-    if not isinstance(crank, Crank) or not isinstance(dyad, (RRR, RRP)):
+    structure = four_link(groups)
+    if structure is None:
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
                                     "a four-link mechanism: a crank and one RRR or RRP group (a four-bar or a "
                                     "crank-slider)")
+    crank, dyad = structure
     links = link_numbers(groups)
     finite: dict[tuple[int, int], complex] = {(0, 1): where[crank.pivot], (1, 2): where[crank.pin],
                                               (2, 3): where[dyad.joint]}

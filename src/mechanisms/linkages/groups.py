@@ -19,7 +19,7 @@ import math
 from dataclasses import dataclass
 from typing import Sequence, Union
 
-__all__ = ["Crank", "RRR", "RRP", "RPR", "LinkPoint", "Group", "link_numbers"]
+__all__ = ["Crank", "RRR", "RRP", "RPR", "LinkPoint", "Group", "link_numbers", "four_link"]
 
 
 @dataclass(frozen=True)
@@ -118,3 +118,11 @@ def link_numbers(groups: Sequence[Group]) -> dict[str, int]:
         for link in group.links:
             numbers.setdefault(link, len(numbers))
     return numbers
+
+
+def four_link(groups: Sequence[Group]) -> tuple[Crank, RRR | RRP] | None:
+    """``(crank, dyad)`` of a four-link mechanism, a crank and one RRR or RRP group (a four-bar, a
+    crank-slider); ``None`` for any other structure."""
+    if len(groups) == 2 and isinstance(groups[0], Crank) and isinstance(groups[1], (RRR, RRP)):
+        return groups[0], groups[1]
+    return None

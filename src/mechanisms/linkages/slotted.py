@@ -179,6 +179,7 @@ class RockerInBlock(Mechanism):
     """
 
     cli_name = "rocker-in-block"
+    always_assembles = True
     cli_parameters = (
         Parameter("crank", "length", "crank radius r = |OA|, m"),
         Parameter("pivot", "pair", "the block's fixed pivot B = A,B (m)"),
