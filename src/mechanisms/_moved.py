@@ -15,10 +15,10 @@ import warnings
 from types import ModuleType
 from typing import Sequence
 
-MOVED = {
-    "mechanisms.motion": "mechanisms.core.motion",
+MOVED: dict[str, str | tuple[str, ...]] = {
+    "mechanisms.motion": ("mechanisms.core.motion", "mechanisms.core.angles"),
     "mechanisms.links": "mechanisms.core.links",
-    "mechanisms.errors": "mechanisms.core.errors",
+    "mechanisms.errors": ("mechanisms.core.errors", "mechanisms.core.validate"),
     "mechanisms.base": "mechanisms.linkages.base",
     "mechanisms._blocks_of_positions": "mechanisms.linkages.chunks",
     "mechanisms.crank_slider": "mechanisms.linkages.crank_slider",
@@ -30,17 +30,24 @@ MOVED = {
     "mechanisms.assign": "mechanisms.course.assign",
     "mechanisms.grading": "mechanisms.course.grading",
 }
-"""Old module name → new module name."""
+"""Old module name → new module name, or the new modules whose names the old module held together
+(``mechanisms.errors`` held the errors and the validators, now ``core.errors`` and ``core.validate``)."""
 
 
 class _Loader(importlib.abc.Loader):
-    def __init__(self, new: str):
-        self.new = new
+    def __init__(self, new: str | tuple[str, ...]):
+        self.new = (new,) if isinstance(new, str) else new
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
-        warnings.warn(f"{spec.name} moved to {self.new}; the old name goes in version 0.3",
+        warnings.warn(f"{spec.name} moved to {' and '.join(self.new)}; the old name goes in version 0.3",
                       DeprecationWarning, stacklevel=2)
-        return importlib.import_module(self.new)
+        modules = [importlib.import_module(name) for name in self.new]
+        if len(modules) == 1:
+            return modules[0]
+        merged = ModuleType(spec.name, modules[0].__doc__)
+        for module in reversed(modules):   # the first module's names win
+            merged.__dict__.update({k: v for k, v in vars(module).items() if not k.startswith("__")})
+        return merged
 
     def exec_module(self, module: ModuleType) -> None:
         """The new module is executed already."""
