@@ -212,7 +212,7 @@ def joint_forces(mechanism: Mechanism, solution: Solution, masses: Mapping[str, 
     structure = four_link(groups)
     if structure is None:
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
-                                    "a crank and one RRR or RRP group, a four-bar or a crank-slider "
+                                    "a CrankSlider or a FourBar, a crank and one RRR or RRP group "
                                     "(kinetostatics is written for these two)")
     crank, dyad = structure
     O, A, B = (solution.point(n).value for n in (crank.pivot, crank.pin, dyad.joint))
