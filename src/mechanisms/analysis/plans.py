@@ -564,7 +564,8 @@ def _build(mechanism: Mechanism, solution: Solution, index: int, quantity: str, 
     groups = mechanism.groups()
     if not groups or not isinstance(groups[0], Crank):
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
-                                    "a mechanism that describes its structure, crank first (Mechanism.groups())")
+                                    "a mechanism that describes its structure, crank first (Mechanism.groups()): a "
+                                    "CrankSlider, FourBar, SlottedLever or Shaper (the plans of chapter 9)")
     numbers = link_numbers(groups)
     _check_extra(points, tuple(link for group in groups for link in group.links if link != "slider"))
     where = _positions(mechanism, solution, index, points)
@@ -773,8 +774,8 @@ def instant_centres(mechanism: Mechanism, solution: Solution, index: int = 0) ->
     structure = four_link(groups)
     if structure is None:
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
-                                    "a four-link mechanism: a crank and one RRR or RRP group (a four-bar or a "
-                                    "crank-slider)")
+                                    "a FourBar or a CrankSlider: a four-link mechanism, a crank and one RRR or RRP "
+                                    "group")
     crank, dyad = structure
     links = link_numbers(groups)
     finite: dict[tuple[int, int], complex] = {(0, 1): where[crank.pivot], (1, 2): where[crank.pin],
