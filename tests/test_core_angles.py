@@ -57,3 +57,10 @@ def test_arrays_keep_their_shape():
     wrapped = wrap_angle(angles)
     assert wrapped.shape == (3, 4)
     np.testing.assert_allclose(np.exp(1j * wrapped), np.exp(1j * angles), atol=1e-14)
+
+
+def test_degrees_just_beyond_the_ends_stay_inside():
+    # by hand: 180 + 1 ulp is −180 + 1 ulp's worth of turn, i.e. just above −180; −(2⁵³ − 1)° is −31° mod 360
+    above = float(np.nextafter(180.0, 200.0))
+    assert -180.0 < float(wrap_degrees(above)) <= 180.0
+    assert float(wrap_degrees(-(2.0**53 - 1))) == -31.0

@@ -57,7 +57,9 @@ def wrap_degrees(angle: ArrayLike) -> np.ndarray:
     inside = (a > -180.0) & (a <= 180.0)
     if np.all(inside):
         return a
-    reduced = 180.0 - np.remainder(180.0 - a, 360.0)   # exact for degrees: (−180, 180]
+    reduced = np.fmod(a, 360.0)                       # exact, in (−360, 360)
+    reduced = np.where(reduced > 180.0, reduced - 360.0, reduced)    # exact (Sterbenz)
+    reduced = np.where(reduced <= -180.0, reduced + 360.0, reduced)
     return np.where(inside, a, reduced)
 
 

@@ -7,6 +7,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..core.angles import wrap_angle
+from ..core.motion import AngleMotion
 from ..linkages.base import Mechanism, Solution
 from .differences import central_difference
 from .newton import solve_generic
@@ -69,6 +70,8 @@ def generic_errors(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alp
     q = np.array([c.value for c in coords])
     q_t = np.array([c.velocity for c in coords])
     q_tt = np.array([c.acceleration for c in coords])
-    return (float(np.max(np.abs(wrap_angle(q - generic.q)))),
+    angles = np.array([isinstance(c, AngleMotion) for c in coords])[:, None]
+    position_errors = np.where(angles, wrap_angle(q - generic.q), q - generic.q)   # lengths are not wrapped
+    return (float(np.max(np.abs(position_errors))),
             float(np.max(np.abs(q_t - generic.q_t))),
             float(np.max(np.abs(q_tt - generic.q_tt))))
