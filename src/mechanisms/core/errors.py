@@ -15,6 +15,7 @@ __all__ = [
     "MechanismError",
     "InvalidParameterError",
     "AssemblyError",
+    "StructureError",
     "MissingDerivativeError",
     "DeadCentreWarning",
     "describe_angles",
@@ -69,6 +70,14 @@ class AssemblyError(MechanismError, ValueError):
         if valid_range is not None:
             message += f"; it assembles only for crank angles in {describe_range(*valid_range)}"
         super().__init__(message)
+
+
+class StructureError(MechanismError, ValueError):
+    """A linkage is described wrongly: a joint no group finds, a cycle, a duplicate name, a wrong
+    number of degrees of freedom, a missing or bad key of a linkage file.
+
+    The message names where (the file, the group, the key) and what is wrong.
+    """
 
 
 class MissingDerivativeError(MechanismError, TypeError):

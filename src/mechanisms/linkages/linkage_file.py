@@ -1,0 +1,470 @@
+"""Linkage files: a linkage described in TOML, read into a :class:`~mechanisms.linkages.composed.Linkage`.
+
+Lengths in m, angles in degrees. The keys (a contract: they keep their meaning)::
+
+    name = "Watt six-bar with an output slider"
+
+    [frame]                     # fixed joints, m
+    O = [0.0, 0.0]
+    C = [0.40, 0.05]
+
+    [crank]                     # the driver: pivot -> pin (optional: link = "crank")
+    pivot = "O"
+    pin = "A"
+    length = 0.10
+
+    [[dyad]]                    # RRR: a joint at given distances from two known joints
+    type = "RRR"
+    joint = "B"
+    from = ["A", "C"]
+    lengths = [0.35, 0.30]
+    branch = 1                  # +1: left of the directed line from[0] -> from[1]; -1: right
+    links = ["coupler", "rocker"]   # optional; default "AB", "CB"
+
+    [[point]]                   # a point fixed to the link through two known joints
+    name = "E"
+    link = ["C", "B"]           # or a link's name
+    along = 0.45                # m along C -> B
+    left = 0.05                 # m to the left of C -> B
+    # or, instead of along/left: distances = [|CE|, |BE|] and branch = +1 (left of C -> B) or -1
+
+    [[dyad]]                    # RRP: a joint on a straight guide, at a distance from a known joint
+    type = "RRP"
+    joint = "H"
+    from = "E"
+    length = 0.40
+    guide = { through = [0.0, 0.60], angle_deg = 0.0 }    # a fixed guide
+    # a guide on a moving link: { through = "C", toward = "B", angle_deg = 0.0 }, the line through
+    # joint C at angle_deg from the direction C -> B (both joints of that link)
+    branch = 1                  # +1: the solution farther along the guide's direction
+    links = ["rod", "H"]        # optional; default "EH" and the block "H"
+
+    [[dyad]]                    # RPR: a lever through a known pivot, slotted through a block at a known joint
+    type = "RPR"
+    block = "A"
+    pivot = "C"
+    joint = "D"                 # optional: the lever's point at `length` from the pivot, on the block's side
+    length = 0.60
+    links = ["A", "lever"]      # optional; default the block "A" and the lever "CD" (or "CA")
+
+    [[dyad]]                    # PRP: two blocks hinged at `joint`, each sliding on its own guide
+    type = "PRP"
+    joint = "K"
+    guides = [{ through = "B", toward = "C" }, { through = [0.0, 0.2], angle_deg = 90.0 }]
+    links = ["K1", "K2"]        # optional; these are the defaults
+
+    [[dyad]]                    # RPP: a block hinged at a known joint slides in a yoke's slot; the yoke on a guide
+    type = "RPP"
+    joint = "Y"                 # the yoke's point on the guide, where the slot crosses it
+    block = "A"
+    guide = { through = [0.0, 0.0], angle_deg = 0.0 }
+    slot_angle_deg = 90.0       # the slot's angle to the guide
+    links = ["A", "Y"]          # optional; the block and the yoke
+
+    [[triad]]                   # a class III group: no closed form, solved by Newton's method
+    joints = ["D", "E", "F"]
+    bars = [["A", "D", 0.3], ["C", "E", 0.3], ["G", "F", 0.3], ["D", "E", 0.2], ["E", "F", 0.2], ["D", "F", 0.2]]
+    guess = { D = [0.1, 0.3], E = [0.3, 0.3], F = [0.2, 0.45] }   # near the assembly mode wanted
+    guess_angle_deg = 0.0       # the crank angle of the guess
+    links = ["DEF", "AD", "CE", "GF"]   # optional
+
+    [[mass]]                    # mass properties of a body (for the energy chapter)
+    body = "coupler"
+    mass = 2.0                  # kg
+    along = 0.15                # m, the centre of mass in the body's frame
+    left = 0.0
+    inertia = 0.02              # kg m^2, about the centre of mass
+
+Groups may come in any order that respects what they need. Every error names the file, the
+group (``[[dyad]] #2``) or key, and the cause.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any, Callable, Mapping
+
+from ..core.errors import MechanismError, StructureError
+from .composed import Linkage
+from .groups import PRP, RPP, RPR, RRP, RRR, Crank, Group, Line, LinkPoint, Triad
+
+__all__ = ["load_linkage", "linkage_from_dict", "example_files", "example_file", "FORMAT_SUMMARY"]
+
+FORMAT_SUMMARY = """\
+A linkage file (TOML; lengths in m, angles in degrees):
+  name = "…"; [frame] JOINT = [x, y]; [crank] pivot, pin, length;
+  [[dyad]] type = "RRR": joint, from = [P, Q], lengths = [|PJ|, |QJ|], branch = ±1 (left/right of P -> Q)
+  [[dyad]] type = "RRP": joint, from, length, guide = {through = [x, y] or JOINT, toward = JOINT, angle_deg}, branch
+  [[dyad]] type = "RPR": block, pivot, joint and length (optional)
+  [[dyad]] type = "PRP": joint, guides = [guide, guide]
+  [[dyad]] type = "RPP": joint, block, guide, slot_angle_deg
+  [[point]] name, link = [P, Q] or LINK, along and left (m) or distances = [|PE|, |QE|] and branch
+  [[triad]] joints, bars = [[P, Q, length], …], guess = {JOINT = [x, y]}, guess_angle_deg
+  [[mass]] body, mass (kg), along, left (m), inertia (kg m^2)
+Every group may name its links: links = [...]. The full format: the book's multi-loop chapter."""
+
+_TOP = {"name", "frame", "crank", "dyad", "point", "triad", "mass", "description"}
+_DYAD_KEYS = {
+    "RRR": ({"type", "joint", "from", "lengths"}, {"branch", "links"}),
+    "RRP": ({"type", "joint", "from", "length", "guide"}, {"branch", "links"}),
+    "RPR": ({"type", "block", "pivot"}, {"joint", "length", "links"}),
+    "PRP": ({"type", "joint", "guides"}, {"links"}),
+    "RPP": ({"type", "joint", "block", "guide", "slot_angle_deg"}, {"links"}),
+}
+
+
+class _NotYet(Exception):
+    """A guide or point on a moving link whose frame is not known yet: try again after more groups."""
+
+
+class _Where:
+    """Where in the file a value comes from, for messages: ``FILE: [[dyad]] #2 (joint 'B')``."""
+
+    def __init__(self, source: str, place: str):
+        self.source, self.place = source, place
+
+    def error(self, message: str, key: str | None = None) -> StructureError:
+        where = f"{self.source}: {self.place}" + (f": key {key!r}" if key else "")
+        return StructureError(f"{where}: {message}")
+
+    def keys(self, table: Mapping[str, Any], required: set[str], optional: set[str]) -> None:
+        missing = sorted(required - set(table))
+        if missing:
+            raise self.error(f"missing key{'s' if len(missing) > 1 else ''} {', '.join(map(repr, missing))}")
+        unknown = sorted(set(table) - required - optional)
+        if unknown:
+            raise self.error(f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))}; "
+                             f"this table takes {', '.join(sorted(required | optional))}")
+
+    def name(self, table: Mapping[str, Any], key: str) -> str:
+        value = table[key]
+        if not isinstance(value, str) or not value.strip():
+            raise self.error(f"must be a joint's name (a string): got {value!r}", key)
+        return value
+
+    def names(self, table: Mapping[str, Any], key: str, count: int) -> tuple[str, ...]:
+        value = table[key]
+        if (not isinstance(value, list) or len(value) != count
+                or not all(isinstance(v, str) and v.strip() for v in value)):
+            raise self.error(f"must be a list of {count} names: got {value!r}", key)
+        if len(set(value)) != count:
+            raise self.error(f"names the same joint twice: {value!r}", key)
+        return tuple(value)
+
+    def number(self, value: Any, key: str, what: str = "a finite number") -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.error(f"must be {what}: got {value!r}", key)
+        value = float(value)
+        if not math.isfinite(value):
+            raise self.error(f"must be {what}: got {value!r}", key)
+        return value
+
+    def length(self, value: Any, key: str) -> float:
+        value = self.number(value, key, "a length > 0 m")
+        if value <= 0.0:
+            raise self.error(f"must be a length > 0 m: got {value!r}", key)
+        return value
+
+    def point(self, value: Any, key: str) -> complex:
+        if not isinstance(value, list) or len(value) != 2:
+            raise self.error(f"must be a point [x, y] in m: got {value!r}", key)
+        return complex(self.number(value[0], key, "a point [x, y] of finite numbers, m"),
+                       self.number(value[1], key, "a point [x, y] of finite numbers, m"))
+
+    def branch(self, table: Mapping[str, Any], key: str = "branch") -> int:
+        value = table.get(key, 1)
+        if isinstance(value, bool) or value not in (1, -1):
+            raise self.error(f"must be +1 or -1: got {value!r}", key)
+        return int(value)
+
+    def links(self, table: Mapping[str, Any], defaults: tuple[str, ...]) -> tuple[str, ...]:
+        if "links" not in table:
+            return defaults
+        return self.names(table, "links", len(defaults))
+
+
+def _guide(where: _Where, value: Any, key: str, local: Callable[[str, str], tuple[str, complex, float]]) -> Line:
+    """A guide table → Line: a fixed one through a point, or one through a joint of a moving link."""
+    if not isinstance(value, dict):
+        raise where.error(f"must be a table {{through = [x, y], angle_deg = …}}: got {value!r}", key)
+    extra = set(value) - {"through", "toward", "angle_deg"}
+    if extra or "through" not in value:
+        raise where.error("a guide takes through = [x, y] or a joint, toward = a joint (for a moving link) and "
+                          f"angle_deg: got {value!r}", key)
+    angle = math.radians(where.number(value.get("angle_deg", 0.0), key + ".angle_deg"))
+    through = value["through"]
+    if isinstance(through, list):
+        if "toward" in value:
+            raise where.error("a fixed guide (through = [x, y]) takes no 'toward'", key)
+        return Line("frame", where.point(through, key + ".through"), angle)
+    if not isinstance(through, str):
+        raise where.error(f"through must be a point [x, y] or a joint's name: got {through!r}", key)
+    toward = value.get("toward")
+    if toward is None:
+        raise where.error("a guide through a joint needs 'toward', a second joint of the same link "
+                          "(the guide's direction is angle_deg from through -> toward)", key)
+    if not isinstance(toward, str):
+        raise where.error(f"toward must be a joint's name: got {toward!r}", key)
+    link, point, base = local(through, toward)
+    return Line(link, point, base + angle)
+
+
+def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Linkage:
+    """A :class:`Linkage` from the parsed contents of a linkage file (see the module's docstring).
+
+    Raises
+    ------
+    StructureError
+        Naming ``source``, the group or key, and what is wrong.
+    """
+    top = _Where(source, "the file")
+    unknown = sorted(set(data) - _TOP)
+    if unknown:
+        raise top.error(f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))}; "
+                        f"a linkage file has {', '.join(sorted(_TOP))}")
+    for key in ("frame", "crank"):
+        if key not in data:
+            raise top.error(f"missing [{key}]")
+        if not isinstance(data[key], dict):
+            raise top.error(f"[{key}] must be one table" + (" (a linkage has one driving crank)"
+                                                             if key == "crank" else ""), key)
+    name = data.get("name", Path(source).stem)
+    if not isinstance(name, str):
+        raise top.error(f"must be a string: got {name!r}", "name")
+    frame_where = _Where(source, "[frame]")
+    frame = {joint: frame_where.point(value, joint) for joint, value in data["frame"].items()}
+    where = _Where(source, "[crank]")
+    crank_table = data["crank"]
+    where.keys(crank_table, {"pivot", "pin", "length"}, {"link"})
+    groups: list[Group] = [Crank(where.name(crank_table, "pivot"), where.name(crank_table, "pin"),
+                                 crank_table.get("link", "crank") if "link" not in crank_table
+                                 else where.name(crank_table, "link"),
+                                 where.length(crank_table["length"], "length"))]
+    places: dict[int, str] = {0: "[crank]"}
+    # moving guides and points on joint pairs need the links' frames: resolved by a first Linkage
+    pending: list[tuple[str, Mapping[str, Any], _Where]] = []
+    for kind in ("dyad", "point", "triad"):
+        tables = data.get(kind, [])
+        if not isinstance(tables, list) or not all(isinstance(t, dict) for t in tables):
+            raise top.error(f"must be an array of tables [[{kind}]]", kind)
+        for number, table in enumerate(tables, 1):
+            pending.append((kind, table, _Where(source, _place(kind, number, table))))
+    masses = _masses(data.get("mass", []), source)
+
+    def local_of(groups_so_far: list[Group]) -> Callable[[str, str], tuple[str, complex, float]]:
+        def local(through: str, toward: str) -> tuple[str, complex, float]:
+            try:
+                partial = Linkage(frame, groups_so_far, name=name)
+            except MechanismError:
+                raise _NotYet from None
+            for link, joints in partial.link_joints().items():
+                if through in joints and toward in joints:
+                    frame_of = partial._links[link].local
+                    direction = frame_of[toward] - frame_of[through]
+                    return link, frame_of[through], math.atan2(direction.imag, direction.real)
+            raise _NotYet
+        return local
+
+    # groups that need a moving link's frame wait until the groups before them make it
+    waiting = pending
+    while waiting:
+        progress = False
+        still: list[tuple[str, Mapping[str, Any], _Where]] = []
+        for kind, table, place in waiting:
+            try:
+                group = _group(kind, table, place, local_of(groups))
+            except _NotYet:
+                still.append((kind, table, place))
+                continue
+            places[len(groups)] = place.place
+            groups.append(group)
+            progress = True
+        if not progress:
+            try:      # an error elsewhere (a joint no group finds, a cycle) is the one to report
+                Linkage(frame, groups, name=name)
+            except MechanismError as error:
+                raise StructureError(f"{source}: {error}") from None
+            kind, table, place = still[0]
+            guide = table.get("guide") or table.get("guides")
+            raise place.error(f"its guide ({guide!r}) or link is on joints that are not both on one link, or that "
+                              "no group finds")
+        waiting = still
+    try:
+        return Linkage(frame, groups, name=name, masses=masses)
+    except MechanismError as error:
+        raise StructureError(f"{source}: {error}") from None
+
+
+def _place(kind: str, number: int, table: Mapping[str, Any]) -> str:
+    label = table.get("joint") or table.get("name") or table.get("joints") or table.get("block")
+    return f"[[{kind}]] #{number}" + (f" ({label!r})" if label else "")
+
+
+def _group(kind: str, table: Mapping[str, Any], where: _Where,
+           local: Callable[[str, str], tuple[str, complex, float]]) -> Group:
+    if kind == "point":
+        return _point(table, where)
+    if kind == "triad":
+        return _triad(table, where)
+    kind_name = table.get("type")
+    if kind_name not in _DYAD_KEYS:
+        raise where.error(f"must be one of {', '.join(_DYAD_KEYS)}: got {kind_name!r}", "type")
+    where.keys(table, *_DYAD_KEYS[kind_name])
+    if kind_name == "RRR":
+        joint = where.name(table, "joint")
+        first, second = where.names(table, "from", 2)
+        lengths = table["lengths"]
+        if not isinstance(lengths, list) or len(lengths) != 2:
+            raise where.error(f"must be two lengths [|{first}{joint}|, |{second}{joint}|] in m: got {lengths!r}",
+                              "lengths")
+        links = where.links(table, (first + joint, second + joint))
+        return RRR(joint, first, second, links[0], links[1], where.length(lengths[0], "lengths"),
+                   where.length(lengths[1], "lengths"), where.branch(table))
+    if kind_name == "RRP":
+        joint, known = where.name(table, "joint"), where.name(table, "from")
+        guide = _guide(where, table["guide"], "guide", local)
+        links = where.links(table, (known + joint, joint))
+        return RRP(joint, known, links[0], links[1], guide.angle, where.length(table["length"], "length"),
+                   where.branch(table), guide.point, guide.link)
+    if kind_name == "RPR":
+        block, pivot = where.name(table, "block"), where.name(table, "pivot")
+        joint = where.name(table, "joint") if "joint" in table else None
+        if (joint is None) != ("length" not in table):
+            raise where.error("give both 'joint' and 'length' (the lever's point at length from the pivot) or "
+                              "neither")
+        length = where.length(table["length"], "length") if joint is not None else None
+        links = where.links(table, (block, pivot + (joint or block)))
+        return RPR(block, pivot, links[1], links[0], joint, length)
+    if kind_name == "PRP":
+        joint = where.name(table, "joint")
+        guides = table["guides"]
+        if not isinstance(guides, list) or len(guides) != 2:
+            raise where.error(f"must be two guides [{{…}}, {{…}}]: got {guides!r}", "guides")
+        first, second = (_guide(where, g, f"guides[{i}]", local) for i, g in enumerate(guides))
+        links = where.links(table, (joint + "1", joint + "2"))
+        return PRP(joint, first, second, links[0], links[1])
+    joint, block = where.name(table, "joint"), where.name(table, "block")
+    guide = _guide(where, table["guide"], "guide", local)
+    slot = math.radians(where.number(table["slot_angle_deg"], "slot_angle_deg"))
+    if abs(math.sin(slot)) < 1e-9:
+        raise where.error("must not be 0° or 180°: a slot parallel to the guide leaves the yoke free",
+                          "slot_angle_deg")
+    links = where.links(table, (block, joint))
+    return RPP(joint, block, guide, slot, links[0], links[1])
+
+
+def _point(table: Mapping[str, Any], where: _Where) -> LinkPoint:
+    where.keys(table, {"name", "link"}, {"along", "left", "distances", "branch"})
+    name = where.name(table, "name")
+    link = table["link"]
+    placed = ("distances" in table, "along" in table or "left" in table)
+    if placed[0] == placed[1]:
+        raise where.error("give its place as along (and left), m, or as distances = [|PE|, |QE|] with a branch")
+    if "distances" in table:
+        if not isinstance(link, list):
+            raise where.error("distances need the link as two joints, link = [P, Q]", "link")
+        distances = table["distances"]
+        if not isinstance(distances, list) or len(distances) != 2:
+            raise where.error(f"must be two lengths [|P{name}|, |Q{name}|] in m: got {distances!r}", "distances")
+        p, q = where.names(table, "link", 2)
+        return LinkPoint(name, "", axis=(p, q), branch=where.branch(table),
+                         distances=(where.length(distances[0], "distances"), where.length(distances[1], "distances")))
+    along = where.number(table.get("along", 0.0), "along", "a distance in m")
+    left = where.number(table.get("left", 0.0), "left", "a distance in m")
+    if "branch" in table:
+        raise where.error("branch goes with distances, not with along/left", "branch")
+    if isinstance(link, list):
+        p, q = where.names(table, "link", 2)
+        return LinkPoint(name, "", along, left, axis=(p, q))
+    if not isinstance(link, str) or not link:
+        raise where.error(f"must be a link's name or two joints [P, Q]: got {link!r}", "link")
+    return LinkPoint(name, link, along, left)
+
+
+def _triad(table: Mapping[str, Any], where: _Where) -> Triad:
+    where.keys(table, {"joints", "bars", "guess"}, {"guess_angle_deg", "links"})
+    joints = table["joints"]
+    if not isinstance(joints, list) or len(joints) < 2 or not all(isinstance(j, str) and j for j in joints):
+        raise where.error(f"must be a list of the group's joints: got {joints!r}", "joints")
+    bars = table["bars"]
+    if not isinstance(bars, list) or not bars:
+        raise where.error(f"must be a list of bars [P, Q, length]: got {bars!r}", "bars")
+    parsed = []
+    for bar in bars:
+        if not (isinstance(bar, list) and len(bar) == 3 and isinstance(bar[0], str) and isinstance(bar[1], str)):
+            raise where.error(f"each bar is [P, Q, length in m]: got {bar!r}", "bars")
+        parsed.append((bar[0], bar[1], where.length(bar[2], "bars")))
+    guess = table["guess"]
+    if not isinstance(guess, dict) or set(guess) != set(joints):
+        raise where.error(f"must give a position [x, y] for each joint {', '.join(joints)}: got {guess!r}", "guess")
+    links = tuple(table["links"]) if "links" in table else ()
+    return Triad(tuple(joints), tuple(parsed), tuple(where.point(guess[j], f"guess.{j}") for j in joints),
+                 math.radians(where.number(table.get("guess_angle_deg", 0.0), "guess_angle_deg")), links)
+
+
+def _masses(tables: Any, source: str) -> dict[str, dict[str, float]]:
+    top = _Where(source, "the file")
+    if not isinstance(tables, list) or not all(isinstance(t, dict) for t in tables):
+        raise top.error("must be an array of tables [[mass]]", "mass")
+    masses: dict[str, dict[str, float]] = {}
+    for number, table in enumerate(tables, 1):
+        where = _Where(source, f"[[mass]] #{number}")
+        where.keys(table, {"body", "mass"}, {"along", "left", "inertia"})
+        body = where.name(table, "body")
+        if body in masses:
+            raise where.error(f"body {body!r} has its mass given twice", "body")
+        properties = {key: where.number(table[key], key) for key in ("mass", "along", "left", "inertia")
+                      if key in table}
+        for key in ("mass", "inertia"):
+            if properties.get(key, 0.0) < 0.0:
+                raise where.error(f"must be ≥ 0: got {properties[key]!r}", key)
+        masses[body] = properties
+    return masses
+
+
+def load_linkage(path: str | Path) -> Linkage:
+    """Read a linkage file (TOML).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file; or the name of a file shipped with the package (``"watt-six-bar"``, see
+        :func:`example_files`).
+
+    Raises
+    ------
+    StructureError
+        The file cannot be read, is not TOML, or describes no valid linkage (the message names
+        the file, the group or key, and the cause).
+    """
+    path = Path(path)
+    if not path.exists() and path.suffix == "" and path.name in example_files():
+        path = example_file(path.name)
+    source = str(path)
+    try:
+        with open(path, "rb") as handle:
+            data = tomllib.load(handle)
+    except FileNotFoundError:
+        raise StructureError(f"{source}: no such file (shipped examples: {', '.join(example_files())})") from None
+    except OSError as error:
+        raise StructureError(f"{source}: cannot be read: {error.strerror}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+        raise StructureError(f"{source}: not a valid TOML file: {error}") from None
+    return linkage_from_dict(data, source)
+
+
+def example_files() -> list[str]:
+    """The names of the linkage files shipped with the package (``mechanisms/linkages/examples``)."""
+    folder = resources.files(__package__).joinpath("examples")
+    return sorted(entry.name[:-5] for entry in folder.iterdir() if entry.name.endswith(".toml"))
+
+
+def example_file(name: str) -> Path:
+    """The path of a shipped linkage file by its name (``"jansen"``)."""
+    path = Path(str(resources.files(__package__).joinpath("examples", f"{name}.toml")))
+    if not path.exists():
+        raise StructureError(f"no shipped linkage file {name!r}; there are {', '.join(example_files())}")
+    return path
