@@ -23,6 +23,7 @@ from typing import Any, Callable, Sequence, cast
 import numpy as np
 
 from .linkages.base import Mechanism, Solution, registry
+from .linkages.linkage_file import FORMAT_SUMMARY, load_linkage
 from .core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError
 from .core.motion import Motion
 
@@ -184,7 +185,10 @@ class _Table:
         parameters = {f"{p.name}_deg" if p.kind == "angle" else p.name:
                       math.degrees(cast(float, value)) if p.kind == "angle" else value
                       for p, value in zip(mechanism.cli_parameters, mechanism.parameters().values())}
-        head = json.dumps({"mechanism": mechanism.cli_name, "parameters": parameters |
+        if not mechanism.cli_parameters:      # a linkage file: its name and its path
+            parameters = dict(mechanism.parameters())
+        name = mechanism.cli_name or getattr(mechanism, "name", type(mechanism).__name__)
+        head = json.dumps({"mechanism": name, "parameters": parameters |
                            {"omega": self.omega, "alpha": self.alpha}}, indent=1, ensure_ascii=False)
         out.write(head[:-2] + ',\n "rows": [')    # the same text as json.dumps of the whole, indent 1
         separator = "\n"
@@ -252,8 +256,11 @@ class _Table:
 
 
 def _table(args: argparse.Namespace, out) -> None:
-    cls = registry[args.mechanism]
-    mechanism = cls(**{p.name: _class_value(p, getattr(args, p.name)) for p in cls.cli_parameters})
+    if args.mechanism == "file":
+        mechanism: Mechanism = load_linkage(args.path)
+    else:
+        cls = registry[args.mechanism]
+        mechanism = cls(**{p.name: _class_value(p, getattr(args, p.name)) for p in cls.cli_parameters})
     positions = 12 if args.positions is None else args.positions
     if not args.angles and not 1 <= positions <= MAX_POSITIONS:
         raise InvalidParameterError("--positions", positions, f"a whole number from 1 to {MAX_POSITIONS}")
@@ -274,8 +281,9 @@ def _table(args: argparse.Namespace, out) -> None:
     for name, link, _, _ in points:
         if name in joints or [n for n, *_ in points].count(name) > 1:
             raise InvalidParameterError("--point", name, "a new name, not a joint's or another point's")
-        if link not in cls.links:
-            raise InvalidParameterError("--point", f"{name}={link}", f"on one of the links {', '.join(cls.links)}")
+        if link not in mechanism.links:
+            raise InvalidParameterError("--point", f"{name}={link}",
+                                        f"on one of the links {', '.join(mechanism.links)}")
     {"json": table.write_json, "csv": table.write_csv, "text": table.write_text}[args.format](out)
     if args.format != "csv":   # the CSV writer ends every row with its newline
         out.write("\n")
@@ -286,8 +294,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="python -m mechanisms",
                                      description="Kinematics of planar linkage mechanisms: the book's tool.")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
-    table = commands.add_parser("table", help="kinematic table of a mechanism over crank positions",
-                                description="Print the kinematic table of a mechanism over crank positions.")
+    table = commands.add_parser("table", help="kinematic table of a mechanism or a linkage file over crank positions",
+                                description="Print the kinematic table of a mechanism, or of the linkage in a file "
+                                            "(table FILE.toml …), over crank positions.",
+                                epilog=FORMAT_SUMMARY, formatter_class=argparse.RawDescriptionHelpFormatter)
     kinds = table.add_subparsers(dest="mechanism", metavar="MECHANISM")
     for name, cls in sorted(registry.items()):
         sub = kinds.add_parser(name, help=(cls.__doc__ or name).strip().splitlines()[0],
@@ -295,17 +305,41 @@ def build_parser() -> argparse.ArgumentParser:
         for p in cls.cli_parameters:
             sub.add_argument(f"--{p.name.replace('_', '-')}", dest=p.name, type=_KINDS[p.kind],
                              required=p.default is None, default=p.default, help=p.help)
-        sub.add_argument("--omega", type=float, required=True, help="crank angular velocity ω1, 1/s")
-        sub.add_argument("--alpha", type=float, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
-        where = sub.add_mutually_exclusive_group()
-        where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
-        where.add_argument("--positions", type=int, default=None, help="N positions evenly over a turn (default 12)")
-        sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,V]",
-                         help="a point fixed to LINK, U m along it from its first joint, V m to its left")
-        sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
+        _add_table_options(sub)
+    sub = kinds.add_parser("file", help="a linkage file: table FILE.toml … (its format: table file --help)",
+                           description="The kinematic table of the linkage described in a TOML file.",
+                           epilog=FORMAT_SUMMARY, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub.add_argument("path", metavar="FILE.toml", help="the linkage file, or the name of a shipped example")
+    _add_table_options(sub)
+    structure = commands.add_parser(
+        "structure", help="structural analysis of a linkage file: links, pairs, degrees of freedom, Assur groups",
+        description="Print the links, the kinematic pairs, the degrees of freedom by the structural "
+                    "(Chebyshev–Grübler) formula and the Assur groups in the order they are solved.",
+        epilog=FORMAT_SUMMARY, formatter_class=argparse.RawDescriptionHelpFormatter)
+    structure.add_argument("path", metavar="FILE.toml", help="the linkage file, or the name of a shipped example")
+    structure.add_argument("--format", choices=("text", "json"), default="text")
     _add_course_commands(commands)
     _add_bench_command(commands)
     return parser
+
+
+def _add_table_options(sub: argparse.ArgumentParser) -> None:
+    """The options every ``table`` takes: the crank's motion, the positions, extra points, the format."""
+    sub.add_argument("--omega", type=float, required=True, help="crank angular velocity ω1, 1/s")
+    sub.add_argument("--alpha", type=float, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
+    where = sub.add_mutually_exclusive_group()
+    where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
+    where.add_argument("--positions", type=int, default=None, help="N positions evenly over a turn (default 12)")
+    sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,V]",
+                     help="a point fixed to LINK, U m along it from its first joint, V m to its left")
+    sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
+
+
+def _structure(args: argparse.Namespace) -> str:
+    from .analysis.structure import structure_of
+
+    report = structure_of(load_linkage(args.path))
+    return report.json() if args.format == "json" else report.text()
 
 
 def _add_bench_command(commands) -> None:
@@ -398,6 +432,15 @@ def _check(args: argparse.Namespace) -> tuple[str, int]:
 _PAIR = re.compile(r"^-?[\d.]+([eE][-+]?\d+)?,-?[\d.]+([eE][-+]?\d+)?$")
 
 
+def _file_table(argv: list[str]) -> list[str]:
+    """``table FILE.toml …`` → ``table file FILE.toml …``: a table of anything that is not a mechanism's name is
+    the table of a linkage file."""
+    if len(argv) > 1 and argv[0] == "table" and not argv[1].startswith("-") and argv[1] not in registry \
+            and argv[1] != "file":
+        return [argv[0], "file", *argv[1:]]
+    return argv
+
+
 def _join_negative_pairs(argv: Sequence[str]) -> list[str]:
     """``--frame -0.4,0.05`` → ``--frame=-0.4,0.05``: argparse takes a value starting with − for an option."""
     out: list[str] = []
@@ -416,13 +459,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     (unknown student ids, repeated rows …), and 2 when a file could not be graded at all.
     """
     parser = build_parser()
-    args = parser.parse_args(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv)))
+    args = parser.parse_args(_file_table(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv))))
     if args.command is None:
         parser.print_help()
         return 0
-    if args.command == "bench":
+    if args.command in ("bench", "structure"):
         try:
-            print(_bench(args))
+            print(_bench(args) if args.command == "bench" else _structure(args))
         except MechanismError as error:
             print(f"error: {error}", file=sys.stderr)
             return 2

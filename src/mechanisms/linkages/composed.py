@@ -110,6 +110,8 @@ class Linkage(Mechanism):
     masses : mapping, optional
         Mass properties by body name: ``{"BC": {"mass": 2.0, "along": 0.15, "inertia": 0.01}}``
         (kg, m, kg·m²), for :func:`mechanisms.analysis.energy.linkage_masses`.
+    source : str, optional
+        The file the linkage was read from, named in tables and messages.
 
     Raises
     ------
@@ -127,8 +129,9 @@ class Linkage(Mechanism):
     """
 
     def __init__(self, frame: Mapping[str, Any], groups: Sequence[Group], name: str = "linkage",
-                 masses: Mapping[str, Mapping[str, float]] | None = None):
+                 masses: Mapping[str, Mapping[str, float]] | None = None, source: str | None = None):
         self.name = str(name)
+        self.source = source
         self.frame = {str(k): self._position(f"frame.{k}", v) for k, v in dict(frame).items()}
         if not self.frame:
             raise StructureError(f"{self.name}: the frame has no joints: give the crank's pivot at least")
@@ -392,14 +395,13 @@ class Linkage(Mechanism):
         return "II", _kind(group)
 
     def describe(self) -> str:
-        return f"{self.name}: {len(self._links) - 1} moving links, " + ", ".join(
-            describe_group(g) for g in self._groups)
+        return self.name + (f" ({self.source})" if self.source else "")
 
     def __repr__(self) -> str:
         return f"Linkage(name={self.name!r}, frame={self.frame!r}, groups={list(self._groups)!r})"
 
     def parameters(self) -> dict[str, object]:
-        return {"name": self.name}
+        return {"file": self.source} if self.source else {"name": self.name}
 
     # --- solving -------------------------------------------------------------------------------
 
@@ -408,7 +410,7 @@ class Linkage(Mechanism):
             return self._solve_block(crank, order)     # Newton's continuation over all positions at once
         return solve_in_chunks(self._solve_block, crank, order, self.links)
 
-    def _solve_block(self, crank: AngleMotion, order: int, upto: int | None = None) -> Solution:
+    def _solve_block(self, crank: AngleMotion, order: int, upto: int | None = None, raw: bool = False) -> Solution:
         phi = crank.value
         state = _State(phi, order)
         for joint, position in self.frame.items():
@@ -417,8 +419,10 @@ class Linkage(Mechanism):
             try:
                 self._step(group, index, crank, state)
             except AssemblyError as error:
+                if raw:        # finding where it assembles: the error as the block gave it
+                    raise
                 raise self._assembly_error(group, error) from None
-        angles = {name: state.angles[name] for name in self.links}
+        angles = {name: state.angles[name] for name in self.links if name in state.angles}
         return Solution(phi, order, angles=angles, points=state.points, links=self.links, sliders=state.sliders,
                         singular=state.singular)
 
@@ -531,7 +535,7 @@ class Linkage(Mechanism):
             needs = group.needs
 
             def known_at(angles_at: np.ndarray) -> dict[str, np.ndarray]:
-                before = self._solve_block(crank_angle(angles_at, 1.0, 0.0, 0), 0, upto=index)
+                before = self._solve_block(crank_angle(angles_at, 1.0, 0.0, 0), 0, upto=index, raw=True)
                 return {j: before.point(j).value for j in needs}
 
             solved = solve_bars(known_at, {j: points[j] for j in needs}, group.joints,
@@ -554,7 +558,7 @@ class Linkage(Mechanism):
             if not ok.any():
                 break
             try:
-                self._solve_block(crank_angle(phi[ok], 1.0, 0.0, 0), 0)
+                self._solve_block(crank_angle(phi[ok], 1.0, 0.0, 0), 0, raw=True)
                 break
             except AssemblyError as error:
                 if error.angles is None or error.angles.size == 0:
@@ -572,22 +576,42 @@ class Linkage(Mechanism):
         """
         if self._intervals is not None:
             return list(self._intervals)
+        self._intervals = self._find_intervals()
+        return list(self._intervals)
+
+    def _edge(self, good: float, bad: float) -> float:
+        """The end of an interval of assembly between a crank angle where it assembles and one where not."""
+        for _ in range(45):
+            middle = 0.5 * (good + bad)
+            if self._assembles(np.array([middle]))[0]:
+                good = middle
+            else:
+                bad = middle
+        return good
+
+    def _find_intervals(self) -> list[tuple[float, float]]:
+        triads = [g for g in self._groups if isinstance(g, Triad)]
+        if triads:
+            # Newton's continuation decides the assembly mode: the interval is the one reached from the guess
+            start = triads[0].guess_angle
+            phi = start + np.linspace(-2 * math.pi, 2 * math.pi, 2 * _SAMPLES + 1)
+            ok = self._assembles(phi)
+            middle = _SAMPLES
+            if not ok[middle]:
+                return []
+            low, high = middle, middle
+            while low > 0 and ok[low - 1]:
+                low -= 1
+            while high < phi.size - 1 and ok[high + 1]:
+                high += 1
+            lo = phi[0] if low == 0 else self._edge(phi[low], phi[low - 1])
+            hi = phi[-1] if high == phi.size - 1 else self._edge(phi[high], phi[high + 1])
+            return [(-math.pi, math.pi)] if hi - lo >= 2 * math.pi else [(lo, hi)]
         phi = np.linspace(-math.pi, math.pi, _SAMPLES, endpoint=False)
         ok = self._assembles(phi)
         if ok.all():
-            self._intervals = [(-math.pi, math.pi)]
-            return list(self._intervals)
+            return [(-math.pi, math.pi)]
         step = phi[1] - phi[0]
-
-        def edge(good: float, bad: float) -> float:
-            for _ in range(45):
-                middle = 0.5 * (good + bad)
-                if self._assembles(np.array([middle]))[0]:
-                    good = middle
-                else:
-                    bad = middle
-            return good
-
         intervals = []
         n = phi.size
         for i in range(n):
@@ -595,13 +619,11 @@ class Linkage(Mechanism):
                 j = i
                 while ok[(j + 1) % n]:
                     j += 1
-                start = edge(phi[i], phi[i] - step)
-                stop = edge(phi[j % n] + (j // n) * 2 * math.pi, phi[j % n] + (j // n) * 2 * math.pi + step)
-                if start > math.pi:
-                    start, stop = start - 2 * math.pi, stop - 2 * math.pi
+                turn = (j // n) * 2 * math.pi           # an interval through ±180° ends past π
+                start = self._edge(phi[i], phi[i] - step)
+                stop = self._edge(phi[j % n] + turn, phi[j % n] + turn + step)
                 intervals.append((start, stop))
-        self._intervals = sorted(intervals)
-        return list(self._intervals)
+        return sorted(intervals)
 
     # --- drawing and the generic solver's view ---------------------------------------------------
 

@@ -293,7 +293,7 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
                               "no group finds")
         waiting = still
     try:
-        return Linkage(frame, groups, name=name, masses=masses)
+        return Linkage(frame, groups, name=name, masses=masses, source=source)
     except MechanismError as error:
         raise StructureError(f"{source}: {error}") from None
 
@@ -441,9 +441,9 @@ def load_linkage(path: str | Path) -> Linkage:
         the file, the group or key, and the cause).
     """
     path = Path(path)
-    if not path.exists() and path.suffix == "" and path.name in example_files():
-        path = example_file(path.name)
     source = str(path)
+    if not path.exists() and path.suffix == "" and path.name in example_files():
+        path, source = example_file(path.name), f"{path.name}.toml (shipped with the package)"
     try:
         with open(path, "rb") as handle:
             data = tomllib.load(handle)
