@@ -110,7 +110,20 @@ def test_bad_input_is_a_clear_error_not_a_crash(args, message):
 def test_negative_pairs_are_values_not_options():
     assert cli._join_negative_pairs(["--frame", "-0.4,0.05", "--crank", "1"]) == ["--frame=-0.4,0.05", "--crank", "1"]
     assert cli._join_negative_pairs(["--frame", "0.4,-0.05"]) == ["--frame", "0.4,-0.05"]
-    assert cli._join_negative_pairs(["--omega", "-5"]) == ["--omega", "-5"]  # argparse reads plain negatives itself
+    assert cli._join_negative_pairs(["--omega", "-5"]) == ["--omega=-5"]
+    # scientific notation and angle ranges, which argparse would take for options (issue 18)
+    assert cli._join_negative_pairs(["--omega", "-1e3", "--angles", "-90:90:30", "--offset", "-5e-2"]) == \
+        ["--omega=-1e3", "--angles=-90:90:30", "--offset=-5e-2"]
+    assert cli._join_negative_pairs(["--format", "json", "--help"]) == ["--format", "json", "--help"]
+
+
+def test_negative_values_in_scientific_notation_reach_the_mechanism():
+    code, out, err = run("table", "crank-slider", "--crank", "0.08", "--rod", "0.3", "--offset", "-5e-2",
+                         "--omega", "-1e3", "--angles", "-90:90:30", "--format", "json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["parameters"]["offset"] == -0.05 and data["parameters"]["omega"] == -1000.0
+    assert [r["phi_deg"] for r in data["rows"]] == [-90.0, -60.0, -30.0, 0.0, 30.0, 60.0]
 
 
 def test_angles_exclude_stop_even_with_fractional_steps():

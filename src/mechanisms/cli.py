@@ -429,7 +429,21 @@ def _check(args: argparse.Namespace) -> tuple[str, int]:
     return report.text(), (1 if report.problems else 0)
 
 
-_PAIR = re.compile(r"^-?[\d.]+([eE][-+]?\d+)?,-?[\d.]+([eE][-+]?\d+)?$")
+_UNSIGNED = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+_NEGATIVE_VALUE = re.compile(rf"^-{_UNSIGNED}([,:][-+]?{_UNSIGNED})*$|^-inf(inity)?$|^-?nan$", re.IGNORECASE)
+
+
+def _join_negative_pairs(argv: Sequence[str]) -> list[str]:
+    """``--omega -1e3``, ``--frame -0.4,0.05``, ``--angles -90:90:30`` → ``--omega=-1e3`` …: argparse would
+    take a value that starts with − and is not a plain decimal for an option of its own."""
+    out: list[str] = []
+    for token in argv:
+        if out and out[-1].startswith("--") and "=" not in out[-1] and token.startswith("-") \
+                and _NEGATIVE_VALUE.match(token):
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
 
 
 def _file_table(argv: list[str]) -> list[str]:
@@ -439,17 +453,6 @@ def _file_table(argv: list[str]) -> list[str]:
             and argv[1] != "file":
         return [argv[0], "file", *argv[1:]]
     return argv
-
-
-def _join_negative_pairs(argv: Sequence[str]) -> list[str]:
-    """``--frame -0.4,0.05`` → ``--frame=-0.4,0.05``: argparse takes a value starting with − for an option."""
-    out: list[str] = []
-    for token in argv:
-        if out and out[-1].startswith("--") and "=" not in out[-1] and token.startswith("-") and _PAIR.match(token):
-            out[-1] = f"{out[-1]}={token}"
-        else:
-            out.append(token)
-    return out
 
 
 def main(argv: Sequence[str] | None = None) -> int:

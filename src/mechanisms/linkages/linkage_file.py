@@ -132,9 +132,10 @@ class _Where:
 
     def keys(self, table: Mapping[str, Any], required: set[str], optional: set[str]) -> None:
         missing = sorted(required - set(table))
-        if missing:
-            raise self.error(f"missing key{'s' if len(missing) > 1 else ''} {', '.join(map(repr, missing))}")
         unknown = sorted(set(table) - required - optional)
+        if missing:
+            raise self.error(f"missing key{'s' if len(missing) > 1 else ''} {', '.join(map(repr, missing))}"
+                             + (f" (and unknown {', '.join(map(repr, unknown))}: misspelt?)" if unknown else ""))
         if unknown:
             raise self.error(f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))}; "
                              f"this table takes {', '.join(sorted(required | optional))}")
