@@ -98,7 +98,7 @@ def slotted_lever_geometries(draw, kind: str = "any"):
     direction = draw(st.floats(-np.pi, np.pi, **finite))
     return crank, (ratio * crank * np.cos(direction), ratio * crank * np.sin(direction))
 
-# chapter 6 strategies -----------------------------------------------------------------
+# chapter 7 strategies -----------------------------------------------------------------
 
 link_mass_values = st.floats(0.1, 5.0, **finite)
 """A mass, kg."""

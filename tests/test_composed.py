@@ -1,4 +1,4 @@
-"""Composed linkages (chapter 6): every book mechanism composed from its groups against its hand-written
+"""Composed linkages (chapter 7): every book mechanism composed from its groups against its hand-written
 class, the generic solver on composed six-bars and class III groups, random linkages (hypothesis)
 against the generic solver in extended precision, and the structure of the shipped files."""
 

@@ -1,5 +1,5 @@
 """Tests of mechanisms.analysis.dynamics: the equation of motion with J_red, its integration,
-the speed fluctuation and the flywheel estimate (chapter 6).
+the speed fluctuation and the flywheel estimate (chapter 7).
 
 Expected values: conservation of energy by the exact motion, the closed-form motion of a single
 rotating link under a constant torque, Newton–Euler joint forces (kinetostatics), hand

@@ -1,5 +1,5 @@
 """Tests of mechanisms.analysis.energy: kinetic and potential energy, power, inertia forces,
-reduced inertia and the power balance (chapter 6).
+reduced inertia and the power balance (chapter 7).
 
 Expected values come from hand calculations (a rotating link, a weight, a spring), from numerical
 differentiation of the energies, from quadrature of the power, and from the joint forces of

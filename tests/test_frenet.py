@@ -1,4 +1,4 @@
-"""Tests of mechanisms.analysis.frenet: the Frenet-frame method of chapter 7.
+"""Tests of mechanisms.analysis.frenet: the Frenet-frame method of chapter 8.
 
 Expected values come from the direct method (each mechanism's closed form and its points by the
 Euler form, ``Solution.point_on``), from the generic Newton solver of ``mechanisms.verify`` (which
@@ -110,7 +110,7 @@ def test_rotation_law_of_a_solution_matches_the_generic_solver():
     assert np.allclose(ours.phi_ss, reference.phi_ss, atol=1e-10)
 
 
-# --- closed forms derived in chapter 7 --------------------------------------------------------
+# --- closed forms derived in chapter 8 --------------------------------------------------------
 
 @settings(max_examples=60, deadline=None)
 @given(crank_slider_geometries(), st.sampled_from([1, -1]))

@@ -1,4 +1,4 @@
-"""The hard cases of chapter 8: dead centres, change points, limits of assembly, extreme scales.
+"""The hard cases of chapter 9: dead centres, change points, limits of assembly, extreme scales.
 
 Every expected value comes from outside the closed form under test: the extended-precision
 solution of the constraint equations (:func:`mechanisms.bench.reference`, Newton's method in

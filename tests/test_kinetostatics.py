@@ -1,5 +1,5 @@
 """Tests of mechanisms.analysis.kinetostatics: joint forces of the crank-slider and the four-bar
-by Newton–Euler (chapter 6).
+by Newton–Euler (chapter 7).
 
 Expected values: the power balance of mechanisms.analysis.energy (an independent route to the
 driving torque), the momentum and angular-momentum balance of the whole mechanism (which the

@@ -149,7 +149,7 @@ def test_bad_inputs_are_refused():
     two = EXAMPLE.solve(np.radians([30.0, 60.0]), omega=215.0)
     with pytest.raises(InvalidParameterError, match="same position"):
         plans.acceleration_plan(EXAMPLE, two, index=1, velocity=plans.velocity_plan(EXAMPLE, two, index=0))
-    lam = mech.LambdaMechanism(2.0, 6.5, 5.0)              # Chebyshev's lambda: no plan in chapter 9
+    lam = mech.LambdaMechanism(2.0, 6.5, 5.0)              # Chebyshev's lambda: no plan in chapter 10
     with pytest.raises(InvalidParameterError, match="mechanism"):
         plans.velocity_plan(lam, lam.solve(np.radians([30.0])))
     with pytest.raises(InvalidParameterError, match="mechanism"):

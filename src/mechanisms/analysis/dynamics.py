@@ -1,4 +1,4 @@
-"""Layer 4: the equation of motion of a one-degree-of-freedom mechanism (chapter 6).
+"""Layer 4: the equation of motion of a one-degree-of-freedom mechanism (chapter 7).
 
 Reduced to its crank, a mechanism with one degree of freedom has the kinetic energy
 ``T = J_red(φ) φ_t²/2`` (:func:`~mechanisms.analysis.energy.reduced_inertia`). Lagrange's
@@ -178,7 +178,7 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
     right-hand side the local error is O(h⁵) and the global error O(h⁴): halving the step
     divides the error by about 16. The tests measure it as the drift of the energy of a free
     run (no drive, no load), which the exact motion conserves: for the crank-slider of
-    chapter 6, below 1e-7 of the energy over 3 revolutions at 200 steps per revolution, and
+    chapter 7, below 1e-7 of the energy over 3 revolutions at 200 steps per revolution, and
     about 16 times less when h halves.
     A load with a jump in its reduced torque lowers the order near the jump; choose h small
     against the angle over which the load changes.
@@ -268,7 +268,7 @@ def energy_swing(phi: ArrayLike, torque: ArrayLike) -> float:
     torque : array_like
         The torque that changes the kinetic energy of the constant part of the inertia (N·m):
         M_d − M_c, and, for a mechanism whose J_red varies, minus ½ J_red' ω_m², the inertia
-        torque of the variable part at the mean speed ω_m (chapter 6).
+        torque of the variable part at the mean speed ω_m (chapter 7).
 
     Returns
     -------
@@ -295,7 +295,7 @@ def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> flo
     Notes
     -----
     From ``ΔE = J (ω_max² − ω_min²)/2 = J ω_m² δ`` for a constant J: the classical estimate
-    (chapter 6). It includes the mean reduced inertia of the mechanism itself, which is
+    (chapter 7). It includes the mean reduced inertia of the mechanism itself, which is
     subtracted to size the flywheel; the variable part of J_red is neglected.
     """
     swing = require_non_negative("swing", swing, "J")

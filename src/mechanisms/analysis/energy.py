@@ -1,4 +1,4 @@
-"""Layer 4: energy and power of a mechanism (chapter 6).
+"""Layer 4: energy and power of a mechanism (chapter 7).
 
 After the kinematic analysis the lecture turns to the centres of mass of the links, their
 kinetic and potential energy, Newton's inertia forces and the rate of change (power) of both
@@ -80,7 +80,7 @@ class LinkMass:
     Notes
     -----
     The moment of inertia about the first joint follows from Steiner's (parallel-axis) theorem,
-    ``J_O = J_S + m (along² + left²)`` (chapter 6).
+    ``J_O = J_S + m (along² + left²)`` (chapter 7).
     """
 
     mass: float
@@ -266,7 +266,7 @@ def kinetic_energies(solution: Solution, masses: Mapping[str, LinkMass]) -> dict
     Notes
     -----
     König's theorem: the energy of the motion of the centre of mass plus that of the rotation
-    about it (chapter 6). With points as complex numbers ``v·a = Re(conj(v) a)``.
+    about it (chapter 7). With points as complex numbers ``v·a = Re(conj(v) a)``.
     """
     _require(solution, 1, "the kinetic energy")
     result = {}
@@ -419,7 +419,7 @@ def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass],
     -----
     The velocity ratios dr/dφ are the velocities of the solution at φ_t = 1, and the second
     derivatives d²r/dφ² its accelerations at φ_t = 1, φ_tt = 0, because ``r_tt = r'' φ_t² + r' φ_tt``.
-    Both are exact: no differences are taken (chapter 6).
+    Both are exact: no differences are taken (chapter 7).
     """
     solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=2)
     parts = kinetic_energies(solution, masses).values()
@@ -471,7 +471,7 @@ def driving_torque(solution: Solution, masses: Mapping[str, LinkMass], loads: Se
     -----
     With ideal (frictionless) joints the joint forces do no work, so the power of the driving
     torque and of the loads goes into the change of the two energies:
-    ``M_d φ_t + P_loads = dT/dt + dV/dt`` (chapter 6). Where φ_t = 0 use the Lagrange form of
+    ``M_d φ_t + P_loads = dT/dt + dV/dt`` (chapter 7). Where φ_t = 0 use the Lagrange form of
     :func:`mechanisms.analysis.dynamics.required_torque`.
     """
     _require(solution, 2, "the driving torque")

@@ -1,4 +1,4 @@
-"""The Frenet-frame method (Pylypaka and Chepizhnyi, 2019), chapter 7.
+"""The Frenet-frame method (Pylypaka and Chepizhnyi, 2019), chapter 8.
 
 A driven link hinged to the crank pin A is seen from a moving frame whose origin is A: the
 Frenet frame of the crank-pin circle (radius r, curvature k = 1/r). Its unit tangent τ points
@@ -88,7 +88,7 @@ class RotationLaw:
     Notes
     -----
     The methods evaluate the formulas of the module docstring for a point at the distance ρ
-    from the crank pin along the driven link (chapter 7; Pylypaka and Chepizhnyi 2019, (1)–(4),
+    from the crank pin along the driven link (chapter 8; Pylypaka and Chepizhnyi 2019, (1)–(4),
     (11)). Arrays have the shape of the crank angles.
     """
 
@@ -224,7 +224,7 @@ def law_from_angles(crank: AngleMotion, link: AngleMotion, radius: float, centre
     -----
     ``s = rψ``, ``φ = θ − ψ − π/2``, ``ṡ = rω``, ``s̈ = rε``;
     ``φ' = θ_t/ṡ − k`` and ``φ'' = (θ_tt − (φ' + k) s̈)/ṡ²`` from the chain rule
-    ``θ_t = θ' ṡ``, ``θ_tt = θ'' ṡ² + θ' s̈`` (chapter 7). The crank must turn (ω ≠ 0) wherever
+    ``θ_t = θ' ṡ``, ``θ_tt = θ'' ṡ² + θ' s̈`` (chapter 8). The crank must turn (ω ≠ 0) wherever
     derivatives are asked for: s is the independent variable.
     """
     radius = require_length("radius", radius)
@@ -314,7 +314,7 @@ def rotation_law(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alpha
                            solution.singular)
 
 
-# Closed forms of the laws for two mechanisms, derived in chapter 7 (corrected where the
+# Closed forms of the laws for two mechanisms, derived in chapter 8 (corrected where the
 # source's print differs; see the errata). They serve as a check of the general route.
 
 def crank_slider_law(s: ArrayLike, curvature: float, rod: float, offset: float = 0.0,
@@ -345,7 +345,7 @@ def crank_slider_law(s: ArrayLike, curvature: float, rod: float, offset: float =
     With h = e − r sin ks (the guide's height above the pin) and w = √(L² − h²):
     θ = atan2(h, b·w), θ' = −b cos ks / w, θ'' = b (k sin ks · w² + h cos² ks) / w³,
     φ = θ − ks − π/2, φ' = θ' − k, φ'' = θ''. For b = −1, e = −e_source these are the source's
-    (8), (9), (10) (chapter 7). Unbounded where w = 0 (the rod perpendicular to the guide).
+    (8), (9), (10) (chapter 8). Unbounded where w = 0 (the rod perpendicular to the guide).
     """
     k = require_length("curvature", curvature)
     rod = require_length("rod", rod)
@@ -390,7 +390,7 @@ def rocker_in_block_law(s: ArrayLike, curvature: float,
     θ = atan2(Y, X), θ' = −(X cos ks + Y sin ks)/Q, θ'' = (X sin ks − Y cos ks)(kQ + 2(X cos ks
     + Y sin ks))/Q². For B = (0, d) they reduce to φ' = k²d(sin ks − kd)/(1 + k²d² − 2kd sin ks)
     and φ'' = dk³(1 − k²d²) cos ks/(1 + k²d² − 2kd sin ks)², the corrected (15), (16) of the
-    source (chapter 7). Undefined where the block is at the pin (Q = 0).
+    source (chapter 8). Undefined where the block is at the pin (Q = 0).
     """
     k = require_length("curvature", curvature)
     a, b = (require_finite("pivot", value) for value in pivot)

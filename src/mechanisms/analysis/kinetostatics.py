@@ -1,4 +1,4 @@
-"""Layer 4: joint forces by Newton–Euler (kinetostatics), chapter 6.
+"""Layer 4: joint forces by Newton–Euler (kinetostatics), chapter 7.
 
 For every moving link of a crank-slider or a four-bar the equations of Newton and Euler,
 
@@ -20,7 +20,7 @@ nearer the frame (in the order frame → crank → coupler → slider or rocker)
 
 The driving torque is the torque of the frame (the motor) on the crank. Its value from the
 joint forces is independent of the power balance of :mod:`mechanisms.analysis.energy`, and the
-two must agree: chapter 6 checks it.
+two must agree: chapter 7 checks it.
 """
 
 from __future__ import annotations

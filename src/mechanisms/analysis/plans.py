@@ -1,4 +1,4 @@
-"""Layer 4: velocity and acceleration plans and instant centres (chapter 9).
+"""Layer 4: velocity and acceleration plans and instant centres (chapter 10).
 
 A *plan* is the vector polygon a course in the theory of mechanisms draws to scale for one crank
 position. It is built here as a student builds it, from the drawing of the mechanism (the joint
@@ -565,7 +565,7 @@ def _build(mechanism: Mechanism, solution: Solution, index: int, quantity: str, 
     if not groups or not isinstance(groups[0], Crank):
         raise InvalidParameterError("mechanism", type(mechanism).__name__,
                                     "a mechanism that describes its structure, crank first (Mechanism.groups()): a "
-                                    "CrankSlider, FourBar, SlottedLever or Shaper (the plans of chapter 9)")
+                                    "CrankSlider, FourBar, SlottedLever or Shaper (the plans of chapter 10)")
     numbers = link_numbers(groups)
     _check_extra(points, tuple(link for group in groups for link in group.links if link != "slider"))
     where = _positions(mechanism, solution, index, points)

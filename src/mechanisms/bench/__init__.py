@@ -1,8 +1,8 @@
 """The benchmark: time per position against error for the closed forms, the generic solver and
-numerical differentiation (``python -m mechanisms bench``; chapter 8 and its appendix).
+numerical differentiation (``python -m mechanisms bench``; chapter 9 and its appendix).
 
 * :mod:`~mechanisms.bench.benchmark` — the runs, the extended-precision reference, the report;
-* the figures of chapter 8 (imported with matplotlib only when drawn).
+* the figures of chapter 9 (imported with matplotlib only when drawn).
 """
 
 from .benchmark import *  # noqa: F401,F403

@@ -1,6 +1,6 @@
 """Layer 6: the benchmark — time per position against error, side by side, in one process.
 
-``python -m mechanisms bench`` runs every method the book compares (chapter 8) on the same
+``python -m mechanisms bench`` runs every method the book compares (chapter 9) on the same
 mechanisms and crank angles and reports, for each, the time per position (best of R runs) and
 the largest error against a high-accuracy reference:
 
@@ -140,7 +140,7 @@ def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
         ``cond₂(Φ_q) = σ_max/σ_min`` at each position: how much a relative error of the
         constraint residual can grow in the coordinates; ``inf`` where Φ_q is singular (dead
         centres, change points). It depends on the units of the coordinates when they mix angles
-        and lengths (chapter 8).
+        and lengths (chapter 9).
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     with warnings.catch_warnings():
@@ -455,7 +455,7 @@ def format_json(report: dict) -> str:
     return json.dumps(report, indent=1)
 
 
-# --- studies for chapter 8 (small sizes, quick) ------------------------------------------------------
+# --- studies for chapter 9 (small sizes, quick) ------------------------------------------------------
 
 QUANTITIES = ("positions", "velocities", "accelerations")
 
@@ -558,7 +558,7 @@ def cost_against_size(mechanism: Mechanism, sizes: Sequence[int], repeat: int = 
     return {key: np.array(value) for key, value in out.items()}
 
 
-# --- figures for chapter 8 -------------------------------------------------------------------------
+# --- figures for chapter 9 -------------------------------------------------------------------------
 
 _METHOD_STYLE = {"closed form": ("o", "#1f77b4"), "newton": ("s", "#ff7f0e"),
                  "central difference": ("^", "#2ca02c"), "memory floor": ("", "#7f7f7f"),

@@ -129,7 +129,7 @@ def hinge_plain(p: PointMotion, q: PointMotion, length_p: float, length_q: float
     """:func:`hinge` written as the book writes it: the same formulas, plain numpy, no speed tricks.
 
     The book shows this form; :func:`hinge`, which the mechanisms use, computes the same numbers
-    in place (fewer temporaries stay in the processor's cache, chapter 8's appendix) and the tests
+    in place (fewer temporaries stay in the processor's cache, chapter 9's appendix) and the tests
     compare the two. Parameters, results and errors are those of :func:`hinge`.
     """
     if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:
@@ -224,7 +224,7 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     # zero against round-off (the limits were checked above); two square roots of products of
     # two lengths each keep it in range for lengths from 1e-150 m to 1e150 m. twice = 2·h·D.
     # The arrays are computed in place: fewer temporaries stay in the processor's cache (the plain
-    # form of the same formulas is hinge_plain; chapter 8's appendix measures what this buys).
+    # form of the same formulas is hinge_plain; chapter 9's appendix measures what this buys).
     far = np.subtract(total, distance)
     np.maximum(far, 0.0, out=far)
     scratch = np.add(distance, total)

@@ -3,7 +3,7 @@
 Every angle the package reduces is reduced to (−π, π] by :func:`wrap_angle` (degrees: (−180°, 180°]
 by :func:`wrap_degrees`); nothing else in the package wraps angles its own way.
 
-A speed trick lives here beside the plain form the book shows (chapter 8 and the appendix on speed
+A speed trick lives here beside the plain form the book shows (chapter 9 and the appendix on speed
 measure what it buys; the tests compare the two):
 
 * :func:`unit_vector_fast` — ``exp(iθ)`` from the tangent of the half angle, beside :func:`unit_vector`;
@@ -79,7 +79,7 @@ def unit_vector_fast(angle: ArrayLike, length: float = 1.0) -> np.ndarray:
     With ``t = tan(θ/2)``: ``exp(iθ) = (1 − t² + 2it)/(1 + t²)``. numpy evaluates the tangent in
     vector instructions, at about a ninth of the cost of a cosine and a sine; the result is within
     4e-16·|length| of ``length·exp(iθ)`` in each component (2.5 units in the last place instead of
-    0.5), for angles of any size (chapter 8). ``θ/2`` is exact, and ``t`` is finite for every
+    0.5), for angles of any size (chapter 9). ``θ/2`` is exact, and ``t`` is finite for every
     finite double θ.
     """
     angle = np.asarray(angle)

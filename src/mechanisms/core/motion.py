@@ -211,7 +211,7 @@ def fixed_point(position: complex, like: ArrayLike = 0.0, order: int = 2) -> Poi
     Notes
     -----
     The arrays are read-only broadcast views of one number (a zero stride): they take no
-    memory and cost nothing to make, however many positions there are (chapter 8).
+    memory and cost nothing to make, however many positions there are (chapter 9).
     """
     shape = np.shape(like)
     value = constant(complex(position), shape)

@@ -25,7 +25,7 @@ __all__ = ["BLOCK", "solve_in_chunks", "solve_in_blocks"]
 
 BLOCK = 32768
 """Positions per block: a complex temporary of a block is 512 kB, and the some dozen that a
-closed form keeps at once fit in the processor's cache (the best of 4096 … 65536 in chapter 8)."""
+closed form keeps at once fit in the processor's cache (the best of 4096 … 65536 in chapter 9)."""
 
 
 class _Gather:

@@ -137,7 +137,7 @@ class CrankSlider(Mechanism):
         return assembly_ranges(self.crank, self.rod, self.offset)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
-        # long arrays block by block, in the processor's cache (chapter 8)
+        # long arrays block by block, in the processor's cache (chapter 9)
         return solve_in_chunks(self._solve_block, crank, order, self.links)
 
     def _solve_block(self, crank: AngleMotion, order: int) -> Solution:

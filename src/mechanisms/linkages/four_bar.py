@@ -329,7 +329,7 @@ class FourBar(Mechanism):
         return np.broadcast_to(side, phi.shape).copy()
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
-        # long arrays block by block, in the processor's cache (chapter 8)
+        # long arrays block by block, in the processor's cache (chapter 9)
         return solve_in_chunks(self._solve_block, crank, order, self.links)
 
     def _solve_block(self, crank: AngleMotion, order: int) -> Solution:

@@ -113,7 +113,7 @@ class SlottedLever(Mechanism):
                                             "block stays in the slot")
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
-        # long arrays block by block, in the processor's cache (chapter 8)
+        # long arrays block by block, in the processor's cache (chapter 9)
         return solve_in_chunks(self._solve_block, crank, order, self.links)
 
     def _solve_block(self, crank: AngleMotion, order: int) -> Solution:

@@ -325,7 +325,7 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axe
         One colour per curve; by default :data:`PATH_COLOURS`, the colours of
         :func:`trajectories`, so a point keeps its colour from path to diagram.
     angle_symbol : str
-        The crank angle's symbol on the axis (chapter 7 writes ψ, after its source).
+        The crank angle's symbol on the axis (chapter 8 writes ψ, after its source).
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 3.2))
@@ -375,7 +375,7 @@ def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dic
     interval : int
         Milliseconds per frame.
     angle_symbol : str
-        The crank angle's symbol in each frame's title (chapter 7 writes ψ, after its source).
+        The crank angle's symbol in each frame's title (chapter 8 writes ψ, after its source).
 
     Returns
     -------

@@ -1,4 +1,4 @@
-"""Layer 6: drawings of velocity and acceleration plans and of instant centres (chapter 9).
+"""Layer 6: drawings of velocity and acceleration plans and of instant centres (chapter 10).
 
 A plan is drawn as a course draws it: to scale, in millimetres of the drawing, from the pole ``p``
 or ``π``, with the vertices lettered (``a``, ``b`` …; ``a′``, ``n2``, ``k`` …) and the scale μ
