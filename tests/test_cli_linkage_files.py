@@ -66,7 +66,7 @@ def test_table_of_a_file_with_an_extra_point(capsys):
 def test_structure_command(capsys):
     status, text, _ = run(capsys, "structure", "jansen")
     assert status == 0
-    assert "W = 3n − 2p = 3·7 − 2·10 = 1" in text and "class II" in text
+    assert "W = 3n − 2p₁ − p₂ = 3·7 − 2·10 − 0 = 1" in text and "class II" in text
     status, text, _ = run(capsys, "structure", "shaper", "--format", "json")
     data = json.loads(text)
     assert data["mobility"] == 1 and [g["kind"] for g in data["groups"]] == ["crank", "RPR", "RRP"]

@@ -22,11 +22,14 @@ from typing import Any
 from . import _moved, core, verify
 from .core import motion
 from .core.errors import (AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError,
-                          MissingDerivativeError)
+                          MissingDerivativeError, StructureError)
 from .core.links import LINK_TYPES, LinkType, harmonic, link_type
 from .core.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point, plane_motion, point_on_link,
                           polar, translated_point)
 from .linkages import Mechanism, Solution, mechanism_classes, registry
+from .linkages import groups
+from .linkages.composed import Linkage
+from .linkages.linkage_file import example_files, load_linkage
 from .present import difference, magnitude, markdown_table
 
 __version__ = "0.2.0"
@@ -36,8 +39,9 @@ __all__ = [
     "Motion", "AngleMotion", "PointMotion", "fixed_point", "plane_motion", "point_on_link", "lagrange_point",
     "translated_point", "polar", "LINK_TYPES", "LinkType", "harmonic", "link_type",
     "MechanismError", "InvalidParameterError", "AssemblyError", "DeadCentreWarning", "MissingDerivativeError",
+    "StructureError",
     # layer 3
-    "Mechanism", "Solution", "registry",
+    "Mechanism", "Solution", "registry", "Linkage", "groups", "load_linkage", "example_files",
     # layers 5 and 6
     "verify", "plot", "present", "markdown_table", "difference", "magnitude",
     "core", "motion",

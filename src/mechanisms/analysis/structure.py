@@ -117,12 +117,12 @@ class StructureReport:
         lines += [f"  {i:2d}  {name.ljust(width)}  {', '.join(joints)}" for i, (name, joints) in
                   enumerate(self.links.items())]
         hinges = sum(1 for p in self.pairs if p[0] == "R")
-        lines += ["", f"Kinematic pairs: p = {self.lower_pairs} lower pairs ({hinges} hinges R, "
+        lines += ["", f"Kinematic pairs: p₁ = {self.lower_pairs} lower pairs ({hinges} hinges R, "
                       f"{self.lower_pairs - hinges} sliding pairs P), no higher pairs"]
         lines += [f"  {kind}  {first} – {second}" + (f" at {joint}" if kind == "R" else f" (block at {joint})")
                   for kind, first, second, joint in self.pairs]
-        lines += ["", "Degrees of freedom (Chebyshev–Grübler): W = 3n − 2p = "
-                      f"3·{self.moving_links} − 2·{self.lower_pairs} = {self.mobility}", "",
+        lines += ["", "Degrees of freedom (Chebyshev–Grübler): W = 3n − 2p₁ − p₂ = "
+                      f"3·{self.moving_links} − 2·{self.lower_pairs} − 0 = {self.mobility}", "",
                   "Groups in the order they are solved:"]
         for g in self.groups:
             if g.assur_class == "-":
