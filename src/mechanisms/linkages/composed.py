@@ -78,6 +78,13 @@ def _apex(base: float, first: float, second: float, side: int) -> complex:
     return complex(along, side * math.sqrt(max(product, 0.0)) / (2.0 * base))
 
 
+def _given(length: float | None) -> float:
+    """A group's length, checked when the linkage was made (so never ``None`` while solving)."""
+    if length is None:
+        raise StructureError("a group of a linkage needs its lengths")
+    return length
+
+
 def _kind(group: Group) -> str:
     return KINDS.get(type(group), type(group).__name__)
 
@@ -142,7 +149,7 @@ class Linkage(Mechanism):
         self._groups = self._ordered(list(groups))
         for group in self._groups:
             self._add(group)
-        self.links = {name: link.pole for name, link in self._links.items() if name != FRAME and link.turns
+        self.links = {name: link.pole for name, link in self._links.items() if name != FRAME and link.turns  # type: ignore[misc]
                       and link.pole is not None}
         self._intervals: list[tuple[float, float]] | None = None
 
@@ -253,11 +260,11 @@ class Linkage(Mechanism):
         elif isinstance(group, RRP):
             length = require_length("length", group.length)
             require_branch(group.branch)
-            guide = self._line(group.guide, "guide")
+            line = self._line(group.guide, "guide")
             pairs = [Pair("R", self._carrier(group.known), group.link, group.known),
-                     Pair("R", group.link, group.slider, group.joint), Pair("P", group.slider, guide.link, group.joint)]
+                     Pair("R", group.link, group.slider, group.joint), Pair("P", group.slider, line.link, group.joint)]
             self._new_link(group.link, group.known, {group.known: 0j, group.joint: complex(length)})
-            self._new_link(group.slider, group.joint, {group.joint: 0j}, turns=guide.link != FRAME, role="slider")
+            self._new_link(group.slider, group.joint, {group.joint: 0j}, turns=line.link != FRAME, role="slider")
             self._pairs += pairs
         elif isinstance(group, RPR):
             pairs = [Pair("R", self._carrier(group.block), group.slider, group.block),
@@ -270,13 +277,13 @@ class Linkage(Mechanism):
             self._new_link(group.lever, group.pivot, local, role="lever")
             self._pairs += pairs
         elif isinstance(group, PRP):
-            first, second = self._line(group.first_guide, "first guide"), self._line(group.second_guide, "second guide")
-            self._pairs += [Pair("P", first.link, group.first_slider, group.joint),
+            one, two = self._line(group.first_guide, "first guide"), self._line(group.second_guide, "second guide")
+            self._pairs += [Pair("P", one.link, group.first_slider, group.joint),
                             Pair("R", group.first_slider, group.second_slider, group.joint),
-                            Pair("P", group.second_slider, second.link, group.joint)]
-            self._new_link(group.first_slider, group.joint, {group.joint: 0j}, turns=first.link != FRAME,
+                            Pair("P", group.second_slider, two.link, group.joint)]
+            self._new_link(group.first_slider, group.joint, {group.joint: 0j}, turns=one.link != FRAME,
                            role="slider")
-            self._new_link(group.second_slider, group.joint, {group.joint: 0j}, turns=second.link != FRAME,
+            self._new_link(group.second_slider, group.joint, {group.joint: 0j}, turns=two.link != FRAME,
                            role="slider")
         elif isinstance(group, RPP):
             guide = self._line(group.guide, "guide")
@@ -478,7 +485,8 @@ class Linkage(Mechanism):
                                           self.frame[group.pivot])
             angles[group.link] = crank
         elif isinstance(group, RRR):
-            joint = hinge(points[group.first], points[group.second], group.first_length, group.second_length,
+            joint = hinge(points[group.first], points[group.second], _given(group.first_length),
+                          _given(group.second_length),
                           group.branch, phi)
             points[group.joint] = joint.point
             angles[group.first_link], angles[group.second_link] = joint.angle_p, joint.angle_q
@@ -486,14 +494,14 @@ class Linkage(Mechanism):
         elif isinstance(group, RRP):
             guide = group.guide
             if guide.link == FRAME:
-                block = slider_on_line(points[group.known], group.length, guide.point, guide.angle, group.branch, phi)
+                block = slider_on_line(points[group.known], _given(group.length), guide.point, guide.angle, group.branch, phi)
                 points[group.joint], angles[group.link] = block.point, block.rod_angle
                 angles[group.slider] = self._fixed_angle(guide.angle, state)
                 state.sliders[group.slider], singular = block.travel, block.singular
             else:
                 through, direction = self._line_motion(guide, state)
                 assert isinstance(direction, AngleMotion)
-                found = circle_on_line(points[group.known], group.length, through, direction, group.branch, phi)
+                found = circle_on_line(points[group.known], _given(group.length), through, direction, group.branch, phi)
                 points[group.joint] = found.point
                 angles[group.link] = polar(found.point - points[group.known])[1]
                 angles[group.slider] = direction
@@ -502,12 +510,12 @@ class Linkage(Mechanism):
         elif isinstance(group, RPR):
             pivot: PointMotion | complex = (self.frame[group.pivot] if group.pivot in self.frame
                                             else points[group.pivot])
-            block = lever_block(points[group.block], pivot)
-            angles[group.lever] = angles[group.slider] = block.lever_angle
-            state.sliders[group.slider] = block.distance
+            lever = lever_block(points[group.block], pivot)
+            angles[group.lever] = angles[group.slider] = lever.lever_angle
+            state.sliders[group.slider] = lever.distance
             if group.joint is not None:
-                points[group.joint] = point_on_link(pivot, block.lever_angle, float(group.length))
-            state.singular = state.singular | block.singular
+                points[group.joint] = point_on_link(pivot, lever.lever_angle, _given(group.length))
+            state.singular = state.singular | lever.singular
         elif isinstance(group, PRP):
             first = self._line_motion(group.first_guide, state)
             second = self._line_motion(group.second_guide, state)
@@ -724,8 +732,8 @@ class Linkage(Mechanism):
                 first, second = next(values), next(values)
                 units[group.first_link] = (np.cos(first), np.sin(first))
                 units[group.second_link] = (np.cos(second), np.sin(second))
-                end = place(group.first_link, complex(group.first_length))
-                close(end, place(group.second_link, complex(group.second_length)))
+                end = place(group.first_link, complex(_given(group.first_length)))
+                close(end, place(group.second_link, complex(_given(group.second_length))))
                 points[group.joint] = end
             elif isinstance(group, RRP):
                 theta, s = next(values), next(values)
@@ -733,7 +741,7 @@ class Linkage(Mechanism):
                 (gx, gy), (ec, es) = line(group.guide)
                 units[group.slider] = (ec, es)
                 end = (gx + s * ec, gy + s * es)
-                close(place(group.link, complex(group.length)), end)
+                close(place(group.link, complex(_given(group.length))), end)
                 points[group.joint] = end
             elif isinstance(group, RPR):
                 xi, length = next(values), next(values)
@@ -741,7 +749,7 @@ class Linkage(Mechanism):
                 px, py = points[group.pivot]
                 close((px + length * np.cos(xi), py + length * np.sin(xi)), points[group.block])
                 if group.joint is not None:
-                    points[group.joint] = place(group.lever, complex(float(group.length)))
+                    points[group.joint] = place(group.lever, complex(_given(group.length)))
             elif isinstance(group, PRP):
                 s1, s2 = next(values), next(values)
                 (ax, ay), (ac, as_) = line(group.first_guide)

@@ -332,21 +332,21 @@ def _group(kind: str, table: Mapping[str, Any], where: _Where,
                    where.branch(table), guide.point, guide.link)
     if kind_name == "RPR":
         block, pivot = where.name(table, "block"), where.name(table, "pivot")
-        joint = where.name(table, "joint") if "joint" in table else None
-        if (joint is None) != ("length" not in table):
+        lever_end = where.name(table, "joint") if "joint" in table else None
+        if (lever_end is None) != ("length" not in table):
             raise where.error("give both 'joint' and 'length' (the lever's point at length from the pivot) or "
                               "neither")
-        length = where.length(table["length"], "length") if joint is not None else None
-        links = where.links(table, (block, pivot + (joint or block)))
-        return RPR(block, pivot, links[1], links[0], joint, length)
+        length = where.length(table["length"], "length") if lever_end is not None else None
+        links = where.links(table, (block, pivot + (lever_end or block)))
+        return RPR(block, pivot, links[1], links[0], lever_end, length)
     if kind_name == "PRP":
         joint = where.name(table, "joint")
         guides = table["guides"]
         if not isinstance(guides, list) or len(guides) != 2:
             raise where.error(f"must be two guides [{{…}}, {{…}}]: got {guides!r}", "guides")
-        first, second = (_guide(where, g, f"guides[{i}]", local) for i, g in enumerate(guides))
+        lines = [_guide(where, g, f"guides[{i}]", local) for i, g in enumerate(guides)]
         links = where.links(table, (joint + "1", joint + "2"))
-        return PRP(joint, first, second, links[0], links[1])
+        return PRP(joint, lines[0], lines[1], links[0], links[1])
     joint, block = where.name(table, "joint"), where.name(table, "block")
     guide = _guide(where, table["guide"], "guide", local)
     slot = math.radians(where.number(table["slot_angle_deg"], "slot_angle_deg"))
