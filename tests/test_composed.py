@@ -395,3 +395,25 @@ def test_random_linkage_files_agree_with_the_generic_solver(case):
     assert errors[1] < tolerance * 100
     assert errors[2] < tolerance * 1000
     assert checks.distance_deviation(linkage, solution) < 1e-13
+
+
+def test_energy_of_a_linkage_file_with_masses():
+    """A crank-slider file with masses: its kinetic energy against ½ m v² + ½ J_S ω² summed by hand."""
+    from mechanisms.analysis import energy
+
+    data = {"frame": {"O": [0.0, 0.0]}, "crank": {"pivot": "O", "pin": "A", "length": 0.1},
+            "dyad": [{"type": "RRP", "joint": "B", "from": "A", "length": 0.4,
+                      "guide": {"through": [0.0, 0.0], "angle_deg": 0.0}, "links": ["rod", "B"]}],
+            "mass": [{"body": "rod", "mass": 2.0, "along": 0.2, "inertia": 0.03},
+                     {"body": "B", "mass": 1.5}]}
+    linkage = linkage_from_dict(data, "masses.toml")
+    masses = energy.linkage_masses(linkage)
+    assert set(masses) == {"rod", "B"} and masses["rod"].inertia == 0.03
+    phi = np.radians(np.arange(0.0, 360.0, 30.0)) + 0.1
+    solution = linkage.solve(phi, 5.0)
+    kinetic = energy.kinetic_energy(solution, masses).value
+    centre = solution.point_on("rod", 0.2)
+    rod = solution.angle("rod")
+    by_hand = (0.5 * 2.0 * np.abs(centre.velocity) ** 2 + 0.5 * 0.03 * rod.omega**2
+               + 0.5 * 1.5 * solution.slider("B").velocity ** 2)
+    np.testing.assert_allclose(kinetic, by_hand, rtol=1e-13)

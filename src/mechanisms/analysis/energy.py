@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence, Union
+from typing import Any, Callable, Mapping, Sequence, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -35,6 +35,7 @@ from ..core.motion import AngleMotion, Motion, PointMotion, polar, translated_po
 __all__ = [
     "STANDARD_GRAVITY",
     "LinkMass",
+    "linkage_masses",
     "Force",
     "Torque",
     "Spring",
@@ -387,6 +388,17 @@ def applied_power(solution: Solution, loads: Sequence[Force | Torque]) -> np.nda
         else:
             raise TypeError(f"a load is a Force or a Torque, not {type(load).__name__}")
     return power
+
+
+def linkage_masses(linkage: Any) -> dict[str, LinkMass]:
+    """The mass properties a linkage file gives (``[[mass]]``), by body, for the functions of this module.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A composed linkage (:class:`~mechanisms.linkages.composed.Linkage`) with ``masses``.
+    """
+    return {body: LinkMass(**properties) for body, properties in getattr(linkage, "masses", {}).items()}
 
 
 def _crank_speed(solution: Solution) -> np.ndarray:
