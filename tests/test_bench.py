@@ -46,7 +46,7 @@ def test_cli_text_and_bad_sizes(capsys):
 
 def test_every_method_of_every_mechanism_is_reported(report):
     found = {(r["mechanism"], r["method"], r["order"]) for r in report["results"]}
-    for name in ("crank-slider", "four-bar", "slotted-lever"):
+    for name in ("crank-slider", "four-bar", "slotted-lever", "four-bar (composed)", "watt-six-bar"):
         for order in (0, 1, 2):
             assert (name, "closed form", order) in found
             assert (name, "memory floor", order) in found
@@ -112,6 +112,28 @@ def test_coordinate_errors_and_output_bytes():
     assert bench.output_bytes(sol) == 50 * (2 * 2 * 8 + 2 * 2 * 16)
     assert bench.output_bytes(m.solve(phi, order=0)) == 50 * (2 * 8 + 2 * 16)
     assert 0 in sol.point("C").value.strides and 0 in sol.angle("crank").omega.strides
+
+
+def test_composed_linkages_are_measured_on_all_their_coordinates():
+    table = bench.benchmark_mechanisms()
+    composed, six_bar = table["four-bar (composed)"], table["watt-six-bar"]
+    assert isinstance(composed, mech.Linkage) and isinstance(six_bar, mech.Linkage)
+    phi = np.linspace(0.0, 2.0 * np.pi, 40, endpoint=False)
+    q, q_t, q_tt = bench.reference(six_bar, phi)
+    # joints B, D, E (x, y) and the units of the links that turn: more than two coordinates
+    assert q.shape[0] > 2
+    sol = six_bar.solve(phi, omega=1.0)
+    coords = six_bar.coordinates(sol)
+    parts = [np.array([c.derivatives()[k] for c in coords]) for k in range(3)]
+    assert max(bench.coordinate_errors(six_bar, *parts, (q, q_t, q_tt))) <= 1e-14
+    # a wrong row anywhere is seen: shift the last coordinate by 1e-9
+    parts[0][-1] += 1e-9
+    assert bench.coordinate_errors(six_bar, *parts, (q, q_t, q_tt))[0] >= 0.9e-9
+    # the composed four-bar's joint B agrees with the class's (two independent constructions)
+    b_class = table["four-bar"].solve(phi, omega=1.0).point("B")
+    b_comp = composed.solve(phi, omega=1.0).point("B")
+    for k in range(3):
+        assert np.max(np.abs(b_class.derivatives()[k] - b_comp.derivatives()[k])) <= 1e-13
 
 
 def test_best_time_keeps_the_shortest():

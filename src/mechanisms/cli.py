@@ -346,8 +346,9 @@ def _add_bench_command(commands) -> None:
     """The subcommand ``bench``: time per position against error (:mod:`mechanisms.bench`)."""
     bench = commands.add_parser(
         "bench", help="time per position against error: closed form, Newton, finite differences, peers",
-        description="Time every method of chapter 9 on the crank-slider, the four-bar and the slotted lever, side "
-                    "by side in one process: time per position (best of R runs) and the largest error against "
+        description="Time every method of chapter 9 on the crank-slider, the four-bar, the slotted lever and two "
+                    "composed linkages (the four-bar from its groups, the Watt six-bar file), side by side in one "
+                    "process: time per position (best of R runs) and the largest error against "
                     "an extended-precision reference. pylinkage is timed too when installed (the bench extra).")
     bench.add_argument("--sizes", default="1000,100000,1000000", metavar="N,N,…",
                        help="numbers of crank positions (default 1000,100000,1000000)")

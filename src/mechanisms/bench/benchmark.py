@@ -39,7 +39,10 @@ from numpy.typing import ArrayLike
 from ..core.motion import AngleMotion, Motion
 from ..linkages.base import Mechanism, Solution, registry
 from ..core.errors import DeadCentreWarning
+from ..linkages.composed import Linkage
 from ..linkages.four_bar import FourBar
+from ..linkages.groups import RRR, Crank
+from ..linkages.linkage_file import load_linkage
 from ..verify import central_difference, solve_constraints
 from ..verify.newton import jacobian, newton_steps, rates
 
@@ -73,13 +76,26 @@ OMEGA = 1.0
 
 
 def benchmark_mechanisms() -> dict[str, Mechanism]:
-    """The mechanisms of the benchmark (those that set ``benchmark``), at their examples, by command-line name.
+    """The mechanisms of the benchmark, by name.
 
-    The four-bar is the peers' one: frame |OC| = 4, crank 1, coupler 3.5, rocker 3 (a
-    crank-rocker). The crank-slider has crank 1, rod 3.5 and offset 0.5; the slotted lever
-    crank 1 and the lever's pivot at (0, 2) (oscillating).
+    The classes that set ``benchmark``, at their examples, by command-line name: the four-bar is
+    the peers' one (frame |OC| = 4, crank 1, coupler 3.5, rocker 3: a crank-rocker), the
+    crank-slider has crank 1, rod 3.5 and offset 0.5, the slotted lever crank 1 and the lever's
+    pivot at (0, 2) (oscillating). Then two composed linkages (chapter 6), solved group after group
+    by :class:`~mechanisms.linkages.composed.Linkage`: ``four-bar (composed)``, the same four-bar
+    built from its crank and one RRR group (what composition costs against the hand-written
+    class), and ``watt-six-bar``, the shipped linkage file of that name (a crank, two RRR groups
+    and an RRP group: ten coordinates).
     """
-    return {name: cls.example() for name, cls in registry.items() if cls.benchmark}
+    table: dict[str, Mechanism] = {name: cls.example() for name, cls in registry.items() if cls.benchmark}
+    four_bar = FourBar.example()
+    table["four-bar (composed)"] = Linkage(
+        {"O": 0.0, "C": complex(*four_bar.frame)},
+        [Crank("O", "A", length=four_bar.crank),
+         RRR("B", "A", "C", "coupler", "rocker", four_bar.coupler, four_bar.rocker, four_bar.branch)],
+        name="four-bar (composed)")
+    table["watt-six-bar"] = load_linkage("watt-six-bar")
+    return table
 
 
 # --- the reference ------------------------------------------------------------------------------
@@ -91,7 +107,7 @@ def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha:
     Parameters
     ----------
     mechanism : Mechanism
-        A mechanism with two unknown coordinates (``mechanism.coordinates``).
+        A mechanism with k unknown coordinates (``mechanism.coordinates``).
     phi : array_like
         Crank angles φ (rad), taken as exact (double or extended precision).
     omega, alpha : float
@@ -101,7 +117,7 @@ def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha:
 
     Returns
     -------
-    (q, q_t, q_tt) : tuple of ndarray, shape (2, n), dtype longdouble
+    (q, q_t, q_tt) : tuple of ndarray, shape (k, n), dtype longdouble
 
     Notes
     -----
@@ -130,7 +146,7 @@ def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     mechanism : Mechanism
-        A mechanism with two unknown coordinates.
+        A mechanism with k unknown coordinates.
     phi : array_like
         Crank angles φ (rad).
 
@@ -163,7 +179,8 @@ def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarra
                       ref: Sequence[np.ndarray]) -> tuple[float, float, float]:
     """Largest errors of coordinates, velocities and accelerations against :func:`reference`.
 
-    ``q``, ``q_t``, ``q_tt`` are arrays of shape (2, n) (or ``None`` if not computed); angles
+    ``q``, ``q_t``, ``q_tt`` are arrays of shape (k, n), one row per coordinate of
+    ``mechanism.coordinates`` (or ``None`` if not computed); angles
     are compared modulo 2π. Returns ``(position, velocity, acceleration)`` errors (rad or m,
     per second, per second squared), ``nan`` for what was not computed.
     """
@@ -174,7 +191,7 @@ def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarra
             out.append(math.nan)
             continue
         worst = 0.0
-        for row in range(2):
+        for row in range(len(theirs)):
             diff = np.asarray(mine[row], dtype=np.longdouble) - theirs[row]
             diff = _wrapped(diff, wrap and angles[row])
             worst = max(worst, float(np.max(np.abs(diff))))
@@ -276,15 +293,16 @@ def _bench_mechanism(name: str, mechanism: Mechanism, n: int, repeat: int) -> li
         errors = coordinate_errors(mechanism, g.q[:, sample], g.q_t[:, sample], g.q_tt[:, sample], ref)
         results.append(_result(name, "newton", 2, tol, n, seconds, max(errors)))
     # numerical differentiation of the closed-form positions
+    angle_rows = _angle_rows(mechanism)
     for order in (1, 2):
         for h in DIFFERENCE_STEPS:
             def difference():
                 return np.array([central_difference(_row_function(mechanism, k), phi, OMEGA, h,
-                                                    order, angle=k == 0 or _angle_rows(mechanism)[k])
-                                 for k in range(2)])
+                                                    order, angle=angle)
+                                 for k, angle in enumerate(angle_rows)])
             seconds = best_time(difference, repeat)
             values = difference()[:, sample]
-            error = max(float(np.max(np.abs(values[row] - ref[order][row]))) for row in range(2))
+            error = max(float(np.max(np.abs(values[row] - ref[order][row]))) for row in range(len(angle_rows)))
             results.append(_result(name, "central difference", order, h, n, seconds, error))
     return results
 
@@ -468,7 +486,7 @@ def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
     Parameters
     ----------
     mechanism : Mechanism
-        A mechanism with two unknown coordinates.
+        A mechanism with k unknown coordinates.
     n : int
         Crank positions, evenly over a turn.
     repeat : int
