@@ -10,55 +10,96 @@ The folders are the layers, bottom up (a module imports only from its own layer 
 6. :mod:`mechanisms.plot` (matplotlib) and :mod:`mechanisms.present` (text) — figures and tables;
 7. tools: :mod:`mechanisms.course` (assignments, grading), :mod:`mechanisms.bench`, :mod:`mechanisms.cli`.
 
-``import mechanisms`` imports layers 1–5 and the text tables; matplotlib is imported only when
-``mechanisms.plot`` is first used.
+``import mechanisms`` is quick: it imports nothing but this file. Every public name (``mechanisms.CrankSlider``, ``mechanisms.Motion``, ``mechanisms.verify`` …)
+imports its module, and numpy with it, when it is first used (module ``__getattr__``, PEP 562), so
+that the command line and scripts pay only for what they use; ``mechanisms.plot`` imports matplotlib
+when something is first drawn. ``from mechanisms import *`` and ``dir(mechanisms)`` list every name.
 """
 
 from __future__ import annotations
 
 import importlib
-from typing import Any
+import sys
+from typing import TYPE_CHECKING, Any
 
-from . import _moved, core, verify
-from .core import motion
-from .core.errors import (AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError,
-                          MissingDerivativeError, StructureError)
-from .core.links import LINK_TYPES, LinkType, harmonic, link_type
-from .core.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point, plane_motion, point_on_link,
-                          polar, translated_point)
-from .linkages import Mechanism, Solution, mechanism_classes, registry
-from .linkages import groups
-from .linkages.composed import Linkage
-from .linkages.linkage_file import example_files, load_linkage
-from .present import difference, magnitude, markdown_table
+if TYPE_CHECKING:   # what the names are, for type checkers and editors; nothing is imported at run time
+    from . import core, plot, present, verify  # noqa: F401
+    from .core import motion  # noqa: F401
+    from .core.errors import (AssemblyError, DeadCentreWarning, InvalidParameterError,  # noqa: F401
+                              MechanismError, MissingDerivativeError, StructureError)
+    from .core.links import LINK_TYPES, LinkType, harmonic, link_type  # noqa: F401
+    from .core.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point,  # noqa: F401
+                              plane_motion, point_on_link, polar, translated_point)
+    from .linkages import Mechanism, Solution, groups, mechanism_classes, registry  # noqa: F401
+    from .linkages.composed import Linkage  # noqa: F401
+    from .linkages.linkage_file import example_files, load_linkage  # noqa: F401
+    from .present import difference, magnitude, markdown_table  # noqa: F401
 
 __version__ = "0.2.0"
 
-__all__ = [
+_NAMES: dict[str, tuple[str, ...]] = {
     # layer 1
-    "Motion", "AngleMotion", "PointMotion", "fixed_point", "plane_motion", "point_on_link", "lagrange_point",
-    "translated_point", "polar", "LINK_TYPES", "LinkType", "harmonic", "link_type",
-    "MechanismError", "InvalidParameterError", "AssemblyError", "DeadCentreWarning", "MissingDerivativeError",
-    "StructureError",
+    "mechanisms.core.motion": ("Motion", "AngleMotion", "PointMotion", "fixed_point", "plane_motion",
+                               "point_on_link", "lagrange_point", "translated_point", "polar"),
+    "mechanisms.core.links": ("LINK_TYPES", "LinkType", "harmonic", "link_type"),
+    "mechanisms.core.errors": ("MechanismError", "InvalidParameterError", "AssemblyError", "DeadCentreWarning",
+                               "MissingDerivativeError", "StructureError"),
     # layer 3
-    "Mechanism", "Solution", "registry", "Linkage", "groups", "load_linkage", "example_files",
-    # layers 5 and 6
-    "verify", "plot", "present", "markdown_table", "difference", "magnitude",
-    "core", "motion",
-]
+    "mechanisms.linkages": ("Mechanism", "Solution", "registry", "mechanism_classes", "groups"),
+    "mechanisms.linkages.composed": ("Linkage",),
+    "mechanisms.linkages.linkage_file": ("load_linkage", "example_files"),
+    # layer 6
+    "mechanisms.present": ("markdown_table", "difference", "magnitude"),
+}
+"""The public names of the package by the module that defines them (imported when first used)."""
 
-# the mechanism classes (CrankSlider, FourBar …) as each module of mechanisms.linkages registered them
-globals().update(mechanism_classes())
-__all__ += sorted(mechanism_classes())
+_MODULES = {"core": "mechanisms.core", "motion": "mechanisms.core.motion", "verify": "mechanisms.verify",
+            "plot": "mechanisms.plot", "present": "mechanisms.present", "analysis": "mechanisms.analysis",
+            "bench": "mechanisms.bench", "course": "mechanisms.course", "cli": "mechanisms.cli"}
+"""Modules reached as attributes: ``mechanisms.verify`` …; ``mechanisms.plot`` imports matplotlib."""
 
-_LAZY = {"plot": "mechanisms.plot", "present": "mechanisms.present", "analysis": "mechanisms.analysis",
-         "bench": "mechanisms.bench", "course": "mechanisms.course", "cli": "mechanisms.cli"}
+class _OldModulePaths:
+    """Finds the module paths of version 0.1 (``mechanisms.four_bar`` …, :mod:`mechanisms._moved`), asked
+    only for a module of this package that is not found where it is: the table of moved names (and the
+    import machinery it needs) is imported when an old path is first used, not with the package."""
+
+    @staticmethod
+    def find_spec(fullname: str, path: Any, target: Any = None) -> Any:
+        if fullname.partition(".")[0] != __name__ or fullname == f"{__name__}._moved":
+            return None
+        return importlib.import_module(f"{__name__}._moved")._Finder().find_spec(fullname, path, target)
+
+
+if not any(isinstance(finder, _OldModulePaths) for finder in sys.meta_path):
+    sys.meta_path.append(_OldModulePaths())
+
+_HOME = {name: module for module, names in _NAMES.items() for name in names}
+_PUBLIC = [name for names in _NAMES.values() for name in names if name != "mechanism_classes"]
+_PUBLIC += ["verify", "plot", "present", "core", "motion"]
+
+
+def _mechanism_classes() -> dict[str, type]:
+    """The mechanism classes (``CrankSlider``, ``FourBar`` …) as each module of :mod:`mechanisms.linkages`
+    registered them (importing that folder imports every mechanism's module)."""
+    return importlib.import_module("mechanisms.linkages").mechanism_classes()
 
 
 def __getattr__(name: str) -> Any:
-    """``mechanisms.plot`` and the tool packages, imported when first used (plotting imports matplotlib)."""
-    if name in _LAZY:
-        module = importlib.import_module(_LAZY[name])
-        globals()[name] = module
-        return module
-    raise AttributeError(f"module 'mechanisms' has no attribute {name!r}")
+    """A public name of the package, imported from its module when first used, then kept here."""
+    if name in _MODULES:
+        value: Any = importlib.import_module(_MODULES[name])
+    elif name in _HOME:
+        value = getattr(importlib.import_module(_HOME[name]), name)
+    elif name == "__all__":
+        value = _PUBLIC + sorted(_mechanism_classes())
+    elif not name.startswith("_") and name in (classes := _mechanism_classes()):
+        value = classes[name]
+    else:
+        raise AttributeError(f"module 'mechanisms' has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    """Every public name, the mechanism classes included (their modules are imported to list them)."""
+    return sorted(set(globals()) | set(_PUBLIC) | set(_MODULES) | set(_mechanism_classes()))
