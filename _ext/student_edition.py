@@ -7,8 +7,12 @@ write: the build fails ("departing unknown node type: solution_end_node"). This 
 replaces ``solution-start`` by a directive that, in that case, leaves a marker; a transform then
 removes the marker, everything after it up to the matching ``solution-end``, and that end.
 It also turns off the theme's download button, whose links would give the page's source,
-solutions included (Jupyter Book 1 does not pass ``html.use_download_button`` on to the theme).
-With ``hide_solutions = False`` it changes nothing.
+solutions included (Jupyter Book 1 does not pass ``html.use_download_button`` on to the theme),
+and sets the Sphinx tag ``student_edition``, so that a page can say what is true of its edition:
+text in ``{only} student_edition`` appears in the student edition alone, text in
+``{only} not student_edition`` in the full edition alone (the exercise pages' introductions: the
+full edition has worked solutions to open, the student edition has not). With
+``hide_solutions = False`` it changes nothing.
 
 Only the student edition loads it (see ``tools/student_config.py``).
 """
@@ -53,9 +57,14 @@ class RemoveHiddenSolutions(SphinxTransform):
             del parent.children[start:end + 1]
 
 
-def _no_download_button(app, config) -> None:
+STUDENT_TAG = "student_edition"
+
+
+def _student_edition(app, config) -> None:
+    """No download button, and the tag that ``{only}`` directives test, when solutions are hidden."""
     if config.hide_solutions:
         config.html_theme_options = {**(config.html_theme_options or {}), "use_download_button": False}
+        app.tags.add(STUDENT_TAG)
 
 
 def setup(app):
@@ -63,5 +72,5 @@ def setup(app):
     app.add_node(hidden_solution_start)
     app.add_directive("solution-start", HiddenSolutionStart, override=True)
     app.add_transform(RemoveHiddenSolutions)
-    app.connect("config-inited", _no_download_button)
+    app.connect("config-inited", _student_edition)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

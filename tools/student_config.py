@@ -9,7 +9,10 @@ from the same sources with the same `_config.yml`, changed in three ways:
   directive itself: the code cells of a gated solution would stay on the page, and the build
   fails on the left-over ``solution-end``);
 * the title says "student edition", and the site holds no copy of the sources (``_sources``),
-  since they hold the solutions (the extension also removes the download button).
+  since they hold the solutions (the extension also removes the download button);
+* the extension sets the Sphinx tag ``student_edition``: text in ``{only} student_edition`` is in
+  this edition alone, text in ``{only} not student_edition`` in the full one alone (the exercise
+  pages' introductions, which tell a reader of the full edition when to open a worked solution).
 
 The configuration is generated rather than kept as a second copy, so that it cannot drift from
 `_config.yml`. Jupyter Book resolves ``local_extensions`` relative to the configuration file,
