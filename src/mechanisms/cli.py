@@ -15,6 +15,7 @@ import io
 import json
 import math
 import os
+import pathlib
 import re
 import sys
 import warnings
@@ -406,7 +407,12 @@ def _add_course_commands(commands) -> None:
                     "sheet for each (HTML and Markdown), an answer form for each, and one answer key (key.csv).")
     assign.add_argument("mechanism", choices=_AssignableMechanisms(), metavar="MECHANISM",
                         help="one of %(choices)s")
-    assign.add_argument("--students", type=int, required=True, help="number of students N (variants s01 … sNN)")
+    assign.add_argument("--students", type=int, default=None,
+                        help="number of students N (variants s01 … sNN); with --roster, the list's length")
+    assign.add_argument("--roster", metavar="CLASS.csv",
+                        help="the class list: a CSV file with a name (or first and last name), e-mail and/or "
+                             "identifier column, one student a row (a Moodle grading worksheet will do); the "
+                             "sheets carry the names, the key the names, e-mails and identifiers")
     assign.add_argument("--seed", type=int, default=None,
                         help="seed of the random variants (default: a new one, printed so the run can be repeated)")
     assign.add_argument("--positions", type=int, default=3, help="crank positions per variant (default 3)")
@@ -421,23 +427,41 @@ def _add_course_commands(commands) -> None:
                        help=f"relative tolerance in %% (default {100 * DEFAULT_RELATIVE:g}); each kind of quantity "
                             "also has an absolute floor")
     check.add_argument("--marks", metavar="FILE.csv", help="also write every mark to this CSV file")
+    check.add_argument("--moodle", metavar="WORKSHEET.csv",
+                       help="fill Moodle's grading worksheet (exported from the assignment) with each student's grade "
+                            "and a feedback comment, found by identifier or e-mail (the key must come from "
+                            "assign --roster); every other cell is left as it was")
+    check.add_argument("--moodle-out", metavar="FILE.csv",
+                       help="where to write the filled worksheet (default: WORKSHEET-graded.csv beside it)")
+    check.add_argument("--grades", metavar="FILE.csv",
+                       help="also write the grades as a plain CSV for any platform: student, identifier, name, "
+                            "email, grade (percent), feedback")
 
 
 def _assign(args: argparse.Namespace) -> str:
     import secrets
 
     from .course.assign import make_variants, write_assignment
+    from .course.roster import read_roster
 
+    people = read_roster(args.roster) if args.roster else None
+    if people is not None and args.students is not None and args.students != len(people):
+        raise InvalidParameterError("--students", args.students, f"the number of students of the class list "
+                                    f"{args.roster} ({len(people)}), or left out")
+    if people is None and args.students is None:
+        raise InvalidParameterError("--students", None, "a whole number ≥ 1, or a class list given with --roster")
     seed = args.seed if args.seed is not None else secrets.randbelow(10**6)
-    variants = make_variants(args.mechanism, args.students, seed, args.positions)
-    written = write_assignment(args.mechanism, variants, args.out, seed=seed)
+    variants = make_variants(args.mechanism, len(people) if people else args.students, seed, args.positions)
+    written = write_assignment(args.mechanism, variants, args.out, seed=seed, people=people)
     first, last = variants[0].student, variants[-1].student
+    roster = ([f"  class list    {args.roster}: {first} is {people[0].label}, {last} is {people[-1].label} "
+               "(names on the sheets; names, e-mails, identifiers in the key)"] if people else [])
     return "\n".join([
         f"{args.mechanism}: {len(variants)} variants ({first} … {last}), seed {seed}, written to {args.out}/:",
         f"  sheets        {first}.html … {last}.html and {first}.md … {last}.md (drawings {first}.png …)",
         f"  answer forms  {first}-answers.csv … {last}-answers.csv",
         f"  answer key    {written['key'][0].name}   (keep it from the students)",
-        f"  variants      {written['variants'][0].name}",
+        f"  variants      {written['variants'][0].name}", *roster,
         f"Grade with: python -m mechanisms check {written['key'][0]} ANSWERS.csv …"])
 
 
@@ -450,7 +474,23 @@ def _check(args: argparse.Namespace) -> tuple[str, int]:
     if args.marks:
         with open(args.marks, "w", encoding="utf8", newline="") as handle:
             handle.write(report.csv())
-    return report.text(), (1 if report.problems else 0)
+    text = report.text()
+    if args.moodle:
+        from .course.moodle import fill_worksheet
+
+        worksheet = pathlib.Path(args.moodle)
+        out = args.moodle_out or worksheet.with_name(f"{worksheet.stem}-graded{worksheet.suffix or '.csv'}")
+        filled = fill_worksheet(report, worksheet, out)
+        text += (f"\nMoodle worksheet: {len(filled.filled)} grades and feedback comments written to {filled.path}"
+                 + (f" ({len(filled.untouched)} other row(s) left as they were)" if filled.untouched else "")
+                 + "; upload it in the assignment: Grading action → Upload grading worksheet.")
+    if args.grades:
+        from .course.moodle import grades_csv
+
+        with open(args.grades, "w", encoding="utf8", newline="") as handle:
+            handle.write(grades_csv(report))
+        text += f"\nGrades (percent) and feedback written to {args.grades}."
+    return text, (1 if report.problems else 0)
 
 
 _UNSIGNED = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"

@@ -35,6 +35,7 @@ import numpy as np
 from ..analysis.assignments import Quantity, Task, assignments
 from ..core.errors import DeadCentreWarning, InvalidParameterError, MechanismError
 from ..linkages.base import Mechanism, Solution
+from .roster import IDENTITY_COLUMNS, Person
 
 TASKS = assignments()
 """The mechanisms an assignment can be set on, by command-line name (registered by each mechanism's
@@ -219,9 +220,18 @@ def drawing_png(variant: Variant) -> bytes:
     return buffer.getvalue()
 
 
-def _sheet_parts(task: Task, variant: Variant) -> dict:
+def _name_line(person: Person | None) -> str:
+    """The sheet's line for the student's name: filled in from the class list, else to be written."""
+    if person is None or not (person.name or person.identifier):
+        return "Name: ______________________   Group: ________"
+    who = person.name or "______________________"
+    return f"Name: {who}" + (f"   Identifier: {person.identifier}" if person.identifier else "")
+
+
+def _sheet_parts(task: Task, variant: Variant, person: Person | None = None) -> dict:
     return {
         "title": f"{task.title}: assignment {variant.student}",
+        "name": _name_line(person),
         "data": task.data(variant.mechanism) + [
             ("φ_t = ω1", "crank angular velocity, constant, counter-clockwise", f"{variant.omega:g}", "1/s")],
         "positions": ", ".join(f"{p:g}°" for p in variant.positions_deg),
@@ -241,11 +251,12 @@ def _md(text: str) -> str:
     return text.replace("|", "\\|")
 
 
-def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None) -> str:
-    """The sheet as Markdown; ``image`` is the drawing's file name (omitted if None)."""
+def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None, person: Person | None = None) -> str:
+    """The sheet as Markdown; ``image`` is the drawing's file name (omitted if None); ``person`` the student of
+    the class list (None: a line to write the name on)."""
     task = _task(task)
-    parts = _sheet_parts(task, variant)
-    lines = [f"# {parts['title']}", "", "Name: ______________________   Group: ________", ""]
+    parts = _sheet_parts(task, variant, person)
+    lines = [f"# {parts['title']}", "", _md(parts["name"]), ""]
     if image:
         lines += [f"![The mechanism of {variant.student}]({image})", ""]
     lines += ["## Data", "", "| symbol | meaning | value | unit |", "|---|---|---|---|"]
@@ -289,16 +300,17 @@ def _numeric(text: str) -> str:
     return ' class="num"'
 
 
-def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None) -> str:
-    """The sheet as one self-contained HTML page (the drawing embedded as a base64 PNG)."""
+def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None, person: Person | None = None) -> str:
+    """The sheet as one self-contained HTML page (the drawing embedded as a base64 PNG); ``person`` as for
+    :func:`sheet_markdown`."""
     task = _task(task)
-    parts = _sheet_parts(task, variant)
+    parts = _sheet_parts(task, variant, person)
     e = html.escape
     png = drawing_png(variant) if png is None else png
     out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
            f"<title>{e(parts['title'])}</title>", f"<style>{_CSS}</style>", "</head>", "<body>",
            f"<h1>{e(parts['title'])}</h1>",
-           '<p class="name">Name: ______________________ &nbsp; Group: ________</p>',
+           f'<p class="name">{e(parts["name"]).replace("   ", " &nbsp; ")}</p>',
            f'<img alt="The mechanism of {e(variant.student)}" src="data:image/png;base64,'
            f'{base64.b64encode(png).decode("ascii")}">',
            "<h2>Data</h2>", "<table><tr><th>symbol</th><th>meaning</th><th>value</th><th>unit</th></tr>"]
@@ -321,9 +333,16 @@ def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None) -> 
     return "\n".join(out)
 
 
+def _identity(person: Person) -> dict[str, str]:
+    return {"name": person.name, "email": person.email, "identifier": person.identifier}
+
+
 def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | pathlib.Path,
-                     seed: int | None = None) -> dict[str, list[pathlib.Path]]:
+                     seed: int | None = None, people: Sequence[Person] | None = None) -> dict[str, list[pathlib.Path]]:
     """Write the sheets, answer forms, the key and ``variants.json`` into ``out`` (created if missing).
+
+    ``people`` (one per variant, in order: :func:`mechanisms.course.roster.read_roster`) puts each student's
+    name on the sheet and the columns ``name``, ``email``, ``identifier`` in the key and ``variants.json``.
 
     Returns
     -------
@@ -334,12 +353,16 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
     written: dict[str, list[pathlib.Path]] = {"sheets": [], "forms": [], "key": [], "variants": []}
+    if people is not None and len(people) != len(variants):
+        raise InvalidParameterError("people", len(people), f"one person per variant ({len(variants)})")
+    who = dict(zip((v.student for v in variants), people or ()))
     columns = list(KEY_COLUMNS) + [q.column for q in task.quantities]
     for variant in variants:
         png = drawing_png(variant)
         (out / f"{variant.student}.png").write_bytes(png)
-        for suffix, text in ((".html", sheet_html(task, variant, png)),
-                             (".md", sheet_markdown(task, variant, f"{variant.student}.png"))):
+        person = who.get(variant.student)
+        for suffix, text in ((".html", sheet_html(task, variant, png, person)),
+                             (".md", sheet_markdown(task, variant, f"{variant.student}.png", person))):
             path = out / f"{variant.student}{suffix}"
             path.write_text(text, encoding="utf8")
             written["sheets"].append(path)
@@ -348,11 +371,15 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
                                    for i, p in enumerate(variant.positions_deg)])
         written["forms"].append(form)
     key = out / "key.csv"
-    _write_csv(key, columns, answer_key(task, variants))
+    rows = answer_key(task, variants)
+    if who:      # who each student is, after the id: student,name,email,identifier,position,phi_deg,…
+        rows = [{"student": row["student"], **_identity(who[row["student"]])} | row for row in rows]
+        columns = [columns[0], *IDENTITY_COLUMNS, *columns[1:]]
+    _write_csv(key, columns, rows)
     written["key"].append(key)
     record = out / "variants.json"
-    record.write_text(json.dumps({"mechanism": task.name, "seed": seed,
-                                  "variants": [v.record() for v in variants]}, indent=1, ensure_ascii=False) + "\n",
-                      encoding="utf8")
+    records = [v.record() | (_identity(who[v.student]) if who else {}) for v in variants]
+    record.write_text(json.dumps({"mechanism": task.name, "seed": seed, "variants": records}, indent=1,
+                                 ensure_ascii=False) + "\n", encoding="utf8")
     written["variants"].append(record)
     return written

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
 from ..core.errors import MechanismError
+from .roster import IDENTITY_COLUMNS, Person
 
 __all__ = [
     "Tolerance",
@@ -198,6 +199,8 @@ class Key:
     quantities: list[str]
     phi: dict[tuple[str, int], float]
     values: dict[tuple[str, int], dict[str, float]]
+    people: dict[str, Person] = field(default_factory=dict)
+    """Who each student is, if the key was made from a class list (else empty)."""
 
     @property
     def students(self) -> list[str]:
@@ -206,6 +209,11 @@ class Key:
 
     def positions(self, student: str) -> list[int]:
         return [p for s, p in self.values if s == student]
+
+    def label(self, student: str) -> str:
+        """``s01`` or, from a class list, ``s01 (Ann Example)``."""
+        person = self.people.get(student)
+        return f"{student} ({person.label})" if person and person.label else student
 
 
 def _position(text: str) -> int:
@@ -216,13 +224,17 @@ def _position(text: str) -> int:
 
 
 def read_key(path: str | pathlib.Path) -> Key:
-    """Read and check an answer key (``student,position,phi_deg,QUANTITY…``)."""
+    """Read and check an answer key (``student,position,phi_deg,QUANTITY…``; from a class list also ``name``,
+    ``email`` and ``identifier``, anywhere)."""
     path = pathlib.Path(path)
     header, rows, comma = _read_table(path, "key")
-    if header[:3] != [*ID_COLUMNS, PHI] or len(header) < 4:
-        raise GradingError(f"key {path}: the columns must be student,position,phi_deg and then the quantities; "
-                           f"got {','.join(header)}")
-    quantities = header[3:]
+    identity = [h for h in header if h in IDENTITY_COLUMNS]
+    columns = [h for h in header if h not in IDENTITY_COLUMNS]
+    if columns[:3] != [*ID_COLUMNS, PHI] or len(columns) < 4:
+        raise GradingError(f"key {path}: the columns must be student,position,phi_deg and then the quantities "
+                           f"(and name, email, identifier if made from a class list); got {','.join(header)}")
+    quantities = columns[3:]
+    people: dict[str, Person] = {}
     for column in quantities:
         kind_of(column)   # raises GradingError for a column that is not a quantity
     phi: dict[tuple[str, int], float] = {}
@@ -247,9 +259,14 @@ def read_key(path: str | pathlib.Path) -> Key:
             raise GradingError(f"{where}: student {student} position {position} appears twice")
         phi[student, position] = angle
         values[student, position] = numbers
+        if identity:
+            person = Person(**{c: " ".join(row[c].split()) for c in identity})
+            if people.setdefault(student, person) != person:
+                raise GradingError(f"{where}: student {student} is {person.label!r} here but "
+                                   f"{people[student].label!r} on an earlier line")
     if not values:
         raise GradingError(f"key {path}: no rows")
-    return Key(path, quantities, phi, values)
+    return Key(path, quantities, phi, values, people)
 
 
 @dataclass
@@ -268,13 +285,15 @@ def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None
     ------
     GradingError
         If the file cannot be read or its columns are not the key's (``student``, ``position``,
-        optionally ``phi_deg``, and quantities of the key, in any order).
+        optionally ``phi_deg`` and, if the key has them, ``name``, ``email``, ``identifier`` (ignored), and
+        quantities of the key, in any order).
     """
     path = pathlib.Path(path)
     answers = into if into is not None else Answers()
     header, rows, comma = _read_table(path, "answer file")
     missing = [c for c in ID_COLUMNS if c not in header]
-    unknown = [c for c in header if c not in (*ID_COLUMNS, PHI, *key.quantities)]
+    identity = IDENTITY_COLUMNS if key.people else ()      # the key's own columns, when it has a class list
+    unknown = [c for c in header if c not in (*ID_COLUMNS, PHI, *identity, *key.quantities)]
     if missing or unknown:
         parts = []
         if missing:
@@ -381,9 +400,9 @@ class Report:
             marks = self.of(student)
             right, asked = self.score(student)
             if all(m.status == "missing" for m in marks):
-                lines.append(f"{student}: no answers ({right} of {asked} right)")
+                lines.append(f"{self.key.label(student)}: no answers ({right} of {asked} right)")
                 continue
-            lines.append(f"{student}: {right} of {asked} right ({100 * right / asked:.0f} %)")
+            lines.append(f"{self.key.label(student)}: {right} of {asked} right ({100 * right / asked:.0f} %)")
             absent = {p for p in dict.fromkeys(m.position for m in marks)
                       if all(m.status == "missing" for m in marks if m.position == p)}
             for m in marks:

@@ -1,0 +1,120 @@
+"""The class list of a course: who the students are (name, e-mail, identifier), read from a CSV file.
+
+``python -m mechanisms assign MECHANISM --roster CLASS.csv`` gives the students of the list their variants in
+the list's order (``s01`` is the first row): the sheets carry each student's name, the key their name,
+e-mail and identifier, so that ``check`` can write the grades into a learning platform's worksheet.
+
+The columns are recognised by name, whatever their case, spaces and hyphens (:data:`COLUMNS`); other
+columns are ignored. Moodle's own files can serve as the list: its assignment's grading worksheet
+(``Identifier``, ``Full name``, ``Email address``), its participants' or gradebook's export (``First name``,
+``Last name`` or ``Surname``, ``ID number``, ``Email address``). The file is UTF-8 (with or without a
+byte-order mark), its cells separated by commas, semicolons or tabs, quoted or not.
+"""
+
+from __future__ import annotations
+
+import pathlib
+from dataclasses import dataclass
+
+from .csvtext import CourseFileError, header_key, read_csv_text
+
+__all__ = ["Person", "RosterError", "COLUMNS", "IDENTITY_COLUMNS", "read_roster"]
+
+IDENTITY_COLUMNS = ("name", "email", "identifier")
+"""The columns of a key made from a class list (``assign --roster``) that say who each student is."""
+
+COLUMNS: dict[str, tuple[str, ...]] = {
+    "name": ("Name", "Full name", "Student name"),
+    "first name": ("First name", "Given name"),
+    "last name": ("Last name", "Surname", "Family name"),
+    "email": ("Email", "E-mail", "Email address", "E-mail address", "Mail"),
+    "identifier": ("Identifier", "ID", "ID number", "Student ID", "Student number", "Username", "User ID"),
+}
+"""The column names a class list may use for each field (matched ignoring case, spaces, hyphens and
+underscores: ``full_name`` and ``FULL NAME`` are ``Full name``). Where a file has two columns for one field,
+the one named first here is taken (a Moodle worksheet's ``Identifier`` before an ``ID number``). A name is
+either one column or a first and a last name, joined with a space."""
+
+_FIELD_OF = {header_key(name): field for field, names in COLUMNS.items() for name in names}
+_PRIORITY = {header_key(name): rank for names in COLUMNS.values() for rank, name in enumerate(names)}
+
+
+class RosterError(CourseFileError):
+    """A class list that cannot be used; the message names the file, the line and the cause."""
+
+
+@dataclass(frozen=True)
+class Person:
+    """A student of the class list. Any of the three may be empty, not all of them.
+
+    Attributes
+    ----------
+    name : str
+    email : str
+    identifier : str
+        The platform's or the school's identifier (Moodle's worksheet: ``Participant 123456``).
+    """
+
+    name: str = ""
+    email: str = ""
+    identifier: str = ""
+
+    @property
+    def label(self) -> str:
+        """How a person reads in a report: the name, else the e-mail, else the identifier."""
+        return self.name or self.email or self.identifier
+
+
+def _columns(header: list[str], where: str) -> dict[str, int]:
+    found: dict[str, int] = {}
+    for index, name in enumerate(header):
+        field = _FIELD_OF.get(header_key(name))
+        if field is None:
+            continue
+        if field not in found or _PRIORITY[header_key(name)] < _PRIORITY[header_key(header[found[field]])]:
+            found[field] = index
+    if "name" in found and ({"first name", "last name"} & set(found)):
+        raise RosterError(f"{where}: a name column and first/last name columns; keep one or the other")
+    if ("first name" in found) != ("last name" in found):
+        raise RosterError(f"{where}: a first name needs a last name column too (or use one name column)")
+    if not found:
+        accepted = "; ".join(f"{field}: {', '.join(names)}" for field, names in COLUMNS.items())
+        raise RosterError(f"{where}: no column names a student (found {', '.join(map(repr, header))}); the "
+                          f"accepted column names are {accepted}")
+    return found
+
+
+def read_roster(path: str | pathlib.Path) -> list[Person]:
+    """Read a class list: one student a row, in the list's order (blank rows skipped).
+
+    Raises
+    ------
+    RosterError
+        If the file cannot be read, has no column that names a student, has a row with none of name, e-mail
+        and identifier, more cells than columns, or two rows with the same identifier or e-mail.
+    """
+    table = read_csv_text(path, "class list", RosterError)
+    where = f"class list {table.path}"
+    header, *rows = table.rows
+    columns = _columns([cell.value.strip() for cell in header.cells], where)
+    people: list[Person] = []
+    seen: dict[tuple[str, str], int] = {}
+    for row in rows:
+        if len(row.cells) > len(header.cells) and any(c.value.strip() for c in row.cells[len(header.cells):]):
+            raise RosterError(f"{where}, line {row.line}: more cells than the {len(header.cells)} columns (a "
+                              f"separator inside a name? quote the cell)")
+        value = {field: " ".join(row.value(index).split()) for field, index in columns.items()}
+        name = value.get("name") or " ".join(filter(None, (value.get("first name"), value.get("last name"))))
+        person = Person(name, value.get("email", ""), value.get("identifier", ""))
+        if not person.label:
+            raise RosterError(f"{where}, line {row.line}: no name, e-mail or identifier")
+        for field in ("identifier", "email"):
+            text = getattr(person, field).casefold()
+            if text and (field, text) in seen:
+                raise RosterError(f"{where}, lines {seen[field, text]} and {row.line}: the same {field} "
+                                  f"{getattr(person, field)!r} twice")
+            seen[field, text] = row.line
+        people.append(person)
+    if not people:
+        raise RosterError(f"{where}: no students (only the line of column names)")
+    return people
