@@ -31,7 +31,9 @@ import math
 from dataclasses import dataclass, field
 from typing import Mapping, Sequence, cast
 
+import numpy as np
 
+from ..core.motion import PointMotion
 from ..linkages.base import Mechanism, Solution
 from ..core.errors import InvalidParameterError, MechanismError
 from ..linkages.groups import RPR, RRP, RRR, Crank, LinkPoint, four_link, link_numbers
@@ -49,6 +51,7 @@ __all__ = [
     "acceleration_plan",
     "InstantCentres",
     "instant_centres",
+    "instant_centre_path",
     "kennedy_deviation",
     "velocities_from_centre",
 ]
@@ -742,6 +745,34 @@ def _line_meet(p1: complex, d1: complex, p2: complex, d2: complex) -> complex | 
         return meet(p1, d1, p2, d2)[0]
     except PlanError:
         return None
+
+
+def instant_centre_path(solution: Solution, link: str) -> PointMotion:
+    """The instant centre of a link relative to the frame, at every position of a solution.
+
+    With the link's first joint P as its pole, the velocity of a point r of the link is
+    v = v_P + iθ_t(r − r_P) (chapter 1), which is zero at r_I = r_P + i·v_P/θ_t.
+
+    Parameters
+    ----------
+    solution : Solution
+        A solution with velocities (``order`` ≥ 1).
+    link : str
+        The link's name (``"coupler"`` …).
+
+    Returns
+    -------
+    PointMotion
+        Positions only (m); ``nan`` where θ_t = 0, where the link translates for an instant and
+        its centre is at infinity.
+    """
+    if solution.order < 1:
+        raise InvalidParameterError("solution", f"order {solution.order}", "a solution with velocities (order ≥ 1)")
+    pole = solution.point_on(link, 0.0)
+    turning = np.broadcast_to(solution.angle(link).omega, np.shape(solution.phi))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        centre = np.where(turning != 0.0, pole.value + 1j * pole.velocity / turning, np.nan + 0j)
+    return PointMotion(centre)
 
 
 def instant_centres(mechanism: Mechanism, solution: Solution, index: int = 0) -> InstantCentres:

@@ -103,6 +103,11 @@ class Solution:
         """A sliding pair: position along its guide (m), its velocity and acceleration."""
         return self._lookup(self._sliders, name, "slider")
 
+    def with_points(self, points: dict[str, PointMotion]) -> "Solution":
+        """The same solution with more named points (a coupler point, an instant centre) to look up."""
+        return Solution(self.phi, self.order, angles=self._angles, points={**self._points, **points},
+                        links=self._links, sliders=self._sliders, extras=self.extras, singular=self.singular)
+
     def point_on(self, link: str, along: float, left: float = 0.0) -> PointMotion:
         """A point fixed to a link, computed now (on demand).
 

@@ -1,4 +1,4 @@
-"""Layer 6: figures of the book — one style, drawings of mechanisms, diagrams, animations.
+"""Layer 6: figures of the book — one style, drawings of mechanisms, diagrams (moving figures: :mod:`mechanisms.present.scene`).
 
 Every figure of the book is made here, so a notebook cell that makes a figure is two or three
 lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors are always
@@ -13,13 +13,13 @@ import matplotlib
 
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib import animation
 from matplotlib.patches import Polygon, Rectangle
 
 from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
 from ..core.errors import InvalidParameterError
 from ..core.motion import PointMotion
-from .workarounds import offline_jshtml, skip_idle_redraw
+from ..present.colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
+from .workarounds import light_figures_in_notebooks
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -35,31 +35,12 @@ __all__ = [
     "trajectories",
     "vectors_along",
     "diagram",
-    "animate",
     "link_snapshots",
-    "animate_links",
     "annotate_angle",
     "annotate_length",
     "annotate_dimension",
     "draw_positions",
 ]
-
-ROLE_COLOURS = {
-    "frame": "#4d4d4d",
-    "crank": "#1f77b4",
-    "coupler": "#d62728",
-    "rocker": "#2ca02c",
-    "lever": "#2ca02c",
-    "slider": "#9467bd",
-    "point": "#ff7f0e",
-}
-PATH_COLOURS = ("#8c564b", "#ff7f0e", "#7f7f7f", "#bcbd22", "#1f77b4", "#2ca02c", "#9467bd", "#d62728",
-                "#17a589", "#5d6d7e")
-"""Colours of trajectories, in order (distinct from the vector colours)."""
-ANIMATION_DPI = 72
-"""Resolution of animation frames: 432 × 288 px for a 6 × 4 in figure, about 15 kB a frame."""
-VELOCITY_COLOUR = "#17becf"
-ACCELERATION_COLOUR = "#e377c2"
 
 BOOK_STYLE: dict[str, Any] = {
     "figure.figsize": (6.4, 4.0),
@@ -71,7 +52,6 @@ BOOK_STYLE: dict[str, Any] = {
     "axes.spines.top": False,
     "axes.spines.right": False,
     "legend.frameon": False,
-    "animation.embed_limit": 40.0,
     "svg.hashsalt": "mechanisms",
 }
 
@@ -79,6 +59,7 @@ BOOK_STYLE: dict[str, Any] = {
 def use_book_style() -> None:
     """Set the book's matplotlib style (called on import of :mod:`mechanisms.plot`)."""
     matplotlib.rcParams.update(BOOK_STYLE)  # type: ignore[arg-type]   # its keys are rcParams' names
+    light_figures_in_notebooks()
 
 
 use_book_style()
@@ -121,7 +102,7 @@ def _block_corners(centre: complex, angle: float, size: float) -> list[tuple[flo
 
 
 def _block_symbol(ax: Axes, centre: complex, angle: float, size: float) -> None:
-    ax.add_patch(Polygon(_block_corners(centre, angle, size), closed=True, facecolor="#efe7f7",
+    ax.add_patch(Polygon(_block_corners(centre, angle, size), closed=True, facecolor=BLOCK_FILL,
                          edgecolor=ROLE_COLOURS["slider"], lw=1.5, zorder=3))
 
 
@@ -343,65 +324,6 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axe
     return ax
 
 
-def _to_html(fig: Figure, frame: Callable[[int], None], count: int, interval: int) -> str:
-    """Run ``frame(k)`` for k = 0 … count−1 into an HTML/JavaScript animation; close the figure."""
-    fig.set_dpi(ANIMATION_DPI)
-    skip_idle_redraw(fig)
-    anim = animation.FuncAnimation(fig, frame, frames=count, interval=interval, blit=False)
-    html = offline_jshtml(anim.to_jshtml(default_mode="loop"))
-    plt.close(fig)
-    return html
-
-
-def _limits(values: np.ndarray, margin: float) -> tuple[float, float, float, float]:
-    return (values.real.min() - margin, values.real.max() + margin,
-            values.imag.min() - 1.3 * margin, values.imag.max() + margin)  # room for hatching below
-
-
-def animate(mechanism: Mechanism, solution: Solution, paths: Sequence[str] | dict[str, PointMotion] = (),
-            frames: int | None = None, interval: int = 80, labels: bool = True, title: str | None = None,
-            angle_symbol: str = "φ") -> str:
-    """An animation of the mechanism over the solution's positions, as HTML that plays offline.
-
-    Parameters
-    ----------
-    mechanism, solution
-        What to animate; the solution's positions are the frames (36–72 is plenty).
-    paths : sequence of str or dict
-        Joint names, or ``{label: PointMotion}`` (e.g. a centre of mass from
-        ``solution.point_on``), whose whole trajectories are drawn underneath.
-    frames : int, optional
-        Use only this many evenly spaced positions.
-    interval : int
-        Milliseconds per frame.
-    angle_symbol : str
-        The crank angle's symbol in each frame's title (chapter 8 writes ψ, after its source).
-
-    Returns
-    -------
-    str
-        HTML from :meth:`matplotlib.animation.Animation.to_jshtml`; the figure is closed.
-        Show it with ``IPython.display.HTML``; the play controls work in the static site.
-    """
-    n = len(solution)
-    chosen = np.linspace(0, n - 1, frames).round().astype(int) if frames else np.arange(n)
-    fig, ax = plt.subplots(figsize=(6.0, 4.0))
-    pts = np.concatenate([np.ravel(solution.point(p).value) for p in solution.point_names])
-    limits = _limits(pts, 0.12 * _extent(solution))
-
-    def frame(k: int) -> None:
-        ax.clear()
-        if paths:
-            trajectories(solution, paths if isinstance(paths, dict) else list(paths), ax=ax,
-                         colours=["0.7"] * len(paths))
-        draw(mechanism, solution, chosen[k], ax=ax, labels=labels)
-        ax.set_xlim(limits[0], limits[1])
-        ax.set_ylim(limits[2], limits[3])
-        ax.set_title(title or f"{angle_symbol} = {np.degrees(solution.phi[chosen[k]]) % 360:.0f}°")
-
-    return _to_html(fig, frame, len(chosen), interval)
-
-
 def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax: Axes | None = None, every: int = 1,
                    paths: bool = True) -> Axes:
     """A link drawn as a bar between two of its points at several instants, faded in time order.
@@ -442,41 +364,3 @@ def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax: Axes 
     ax.set_xlabel("x, m")
     ax.set_ylabel("y, m")
     return ax
-
-
-def animate_links(links: dict[str, tuple[PointMotion, PointMotion, str]], times: np.ndarray, interval: int = 80) -> str:
-    """An animation of links given by the motions of two of their points (no mechanism needed).
-
-    Parameters
-    ----------
-    links : dict
-        ``{label: (first point, second point, role)}``; each link is drawn as a bar.
-    times : ndarray
-        The instants (s), one frame each, shown in the title.
-
-    Returns
-    -------
-    str
-        HTML that plays offline; the figure is closed.
-    """
-    fig, ax = plt.subplots(figsize=(6.0, 4.0))
-    everything = np.concatenate([np.concatenate([p.value, q.value]) for p, q, _ in links.values()])
-    limits = _limits(everything, 0.08 * (np.ptp(everything.real) + np.ptp(everything.imag)))
-
-    def frame(k: int) -> None:
-        ax.clear()
-        for label, (p, q, role) in links.items():
-            ax.plot([p.value[k].real, q.value[k].real], [p.value[k].imag, q.value[k].imag],
-                    color=ROLE_COLOURS.get(role, "k"), lw=3, solid_capstyle="round", label=label)
-            ax.plot(q.x[: k + 1], q.y[: k + 1], color="0.7", lw=0.8)
-            ax.plot([p.value[k].real, q.value[k].real], [p.value[k].imag, q.value[k].imag], "o", ms=5, mfc="white",
-                    mec="black")
-        ax.set_aspect("equal")
-        ax.set_xlim(limits[0], limits[1])
-        ax.set_ylim(limits[2], limits[3])
-        ax.set_xlabel("x, m")
-        ax.set_ylabel("y, m")
-        ax.legend(loc="upper right", fontsize=8)
-        ax.set_title(f"t = {times[k]:.3f} s")
-
-    return _to_html(fig, frame, len(times), interval)

@@ -1,5 +1,8 @@
-"""Layer 6, text: Markdown tables and printed numbers (no matplotlib)."""
+"""Layer 6, text and scenes (no matplotlib): Markdown tables, printed numbers, and the moving figures'
+data for the site's player (:mod:`~mechanisms.present.scene`)."""
 
+from .scene import Arrow, Line, On, Parameter, Readout, Scene, acceleration, explorer, scene, velocity
 from .tables import MarkdownTable, difference, magnitude, markdown_table
 
-__all__ = ["MarkdownTable", "markdown_table", "difference", "magnitude"]
+__all__ = ["MarkdownTable", "markdown_table", "difference", "magnitude", "Scene", "scene", "explorer", "Parameter",
+           "Readout", "Arrow", "Line", "On", "velocity", "acceleration"]

@@ -1,0 +1,294 @@
+/* The book's player: moves the scenes that the package `mechanisms` exports (mechanisms.present.scene).
+ *
+ * Each figure is a <div class="mech-player"> holding an SVG still image (one frame, drawn by the package)
+ * and the scene's data as JSON. The player adds the controls (play/pause, a crank-angle slider, a slider
+ * per parameter, toggles for paths and vectors) and a readout, and moves the SVG's elements in place.
+ * It computes nothing: every position and every number it shows is the package's, looked up by frame.
+ * No network, no libraries.
+ */
+(function () {
+  "use strict";
+
+  function fmt(value, digits) {
+    if (value === null || value === undefined) return "—";
+    var text = value.toFixed(digits);
+    if (/^-0(\.0*)?$/.test(text)) text = text.slice(1);       // no "−0.000"
+    return text.replace("-", "\u2212");
+  }
+
+  function arrowPath(p, v, size) {
+    var length = Math.hypot(v[0], v[1]);
+    if (!(length > 0)) return "";
+    var ux = v[0] / length, uy = v[1] / length;
+    var tip = [p[0] + v[0], p[1] + v[1]];
+    var head = Math.min(1.2 * size, 0.5 * length);
+    var left = [tip[0] - head * ux - 0.5 * head * uy, tip[1] - head * uy + 0.5 * head * ux];
+    var right = [tip[0] - head * ux + 0.5 * head * uy, tip[1] - head * uy - 0.5 * head * ux];
+    return "M" + p[0] + "," + p[1] + " L" + tip[0] + "," + tip[1] + " M" + left[0] + "," + left[1] +
+      " L" + tip[0] + "," + tip[1] + " L" + right[0] + "," + right[1];
+  }
+
+  function element(tag, attributes, text) {
+    var node = document.createElement(tag);
+    Object.keys(attributes || {}).forEach(function (key) { node.setAttribute(key, attributes[key]); });
+    if (text !== undefined) node.textContent = text;
+    return node;
+  }
+
+  function label(text) {              // "s_t" is written s with a subscript t: "_" subscripts one character
+    var span = element("span", {}), parts = String(text).split(/_(.)/);
+    parts.forEach(function (part, index) {
+      if (index % 2) span.appendChild(element("sub", {}, part));
+      else if (part) span.appendChild(document.createTextNode(part));
+    });
+    return span;
+  }
+
+  function Player(root) {
+    var script = root.querySelector("script.mech-scene");
+    this.root = root;
+    this.svg = root.querySelector("svg.mech-still");
+    this.data = JSON.parse(script.textContent);
+    var still = (root.getAttribute("data-still") || "0,0").split(",");
+    this.member = parseInt(still[0], 10);
+    this.frame = parseInt(still[1], 10);
+    this.direction = 1;
+    this.timer = null;
+    this.build();
+    this.setMember(this.member);
+    root.classList.add("mech-ready");
+  }
+
+  Player.prototype.at = function (name, frame) {
+    var xy = this.current.xy[name], d = this.data;
+    if (!xy || xy[2 * frame] === null) return null;
+    return [d.origin[0] + d.step * xy[2 * frame], d.origin[1] + d.step * xy[2 * frame + 1]];
+  };
+
+  Player.prototype.build = function () {
+    var d = this.data, self = this;
+    var controls = element("div", { "class": "mech-controls" });
+    this.play = element("button", { "type": "button", "class": "mech-play", "aria-label": "play" }, "\u25B6 play");
+    this.play.addEventListener("click", function () { self.toggle(); });
+    controls.appendChild(this.play);
+    var angle = element("label", { "class": "mech-slider" });
+    angle.appendChild(element("span", { "class": "mech-slider-name" }, d.angle));
+    this.angle = element("input", { "type": "range", "class": "mech-angle", "min": "0",
+      "max": String(d.phi.length - 1), "step": "1", "aria-label": "crank angle " + d.angle });
+    this.angle.addEventListener("input", function () { self.stop(); self.show(parseInt(self.angle.value, 10)); });
+    angle.appendChild(this.angle);
+    controls.appendChild(angle);
+    this.parameters = d.parameters.map(function (p, index) {
+      var box = element("label", { "class": "mech-slider" });
+      var name = element("span", { "class": "mech-slider-name" });
+      name.appendChild(label(p.label));
+      box.appendChild(name);
+      var input = element("input", { "type": "range", "class": "mech-parameter", "min": "0",
+        "max": String(p.values.length - 1), "step": "1", "data-name": p.name, "aria-label": p.label });
+      var output = element("output", { "class": "mech-parameter-value", "data-name": p.name });
+      input.addEventListener("input", function () { self.setMember(self.memberIndex()); });
+      box.appendChild(input);
+      box.appendChild(output);
+      controls.appendChild(box);
+      return { input: input, output: output, spec: p, index: index };
+    });
+    var toggles = [];
+    if (d.paths.length) toggles.push(["mech-path", "paths"]);
+    var kinds = [];
+    d.arrows.forEach(function (a) { if (kinds.indexOf(a.kind) < 0) kinds.push(a.kind); });
+    kinds.forEach(function (kind) { toggles.push(["kind-" + kind, kind]); });
+    toggles.forEach(function (pair) {
+      var toggle = element("label", { "class": "mech-toggle" });
+      var box = element("input", { "type": "checkbox", "checked": "checked", "data-toggle": pair[0] });
+      box.addEventListener("change", function () {
+        self.root.classList.toggle("mech-hide-" + pair[0], !box.checked);
+      });
+      toggle.appendChild(box);
+      toggle.appendChild(document.createTextNode(" " + pair[1]));
+      controls.appendChild(toggle);
+    });
+    this.readout = element("div", { "class": "mech-readout", "aria-live": "off" });
+    this.notes = element("div", { "class": "mech-notes" });
+    var caption = this.root.querySelector(".mech-caption");
+    this.root.insertBefore(controls, caption);
+    this.root.insertBefore(this.readout, caption);
+    this.root.insertBefore(this.notes, caption);
+    this.keys = d.keys;
+    // the member shown first is the still's: set the parameter sliders to it
+    var key = d.keys[this.member] || [];
+    this.parameters.forEach(function (p) {
+      p.input.value = String(p.spec.values.indexOf(key[p.index]));
+    });
+  };
+
+  Player.prototype.memberIndex = function () {
+    var index = 0;
+    this.parameters.forEach(function (p) {
+      index = index * p.spec.values.length + parseInt(p.input.value, 10);
+    });
+    return index;
+  };
+
+  Player.prototype.valid = function (frame) { return this.current.valid.charAt(frame) === "1"; };
+
+  Player.prototype.nearestValid = function (frame) {
+    var n = this.data.phi.length;
+    for (var k = 0; k < n; k++) {
+      var up = (frame + k) % n, down = ((frame - k) % n + n) % n;
+      if (this.valid(up)) return up;
+      if (this.valid(down)) return down;
+    }
+    return -1;
+  };
+
+  Player.prototype.setMember = function (index) {
+    var d = this.data, self = this;
+    this.member = index;
+    this.current = d.members[index];
+    this.parameters.forEach(function (p) {
+      var value = p.spec.values[parseInt(p.input.value, 10)];
+      p.output.textContent = " = " + fmt(value, p.spec.digits) + (p.spec.unit ? " " + p.spec.unit : "");
+    });
+    this.svg.querySelectorAll(".mech-path").forEach(function (path) {
+      path.setAttribute("d", self.pathData(path.getAttribute("data-point")));
+    });
+    this.svg.querySelectorAll(".mech-guide").forEach(function (g) {
+      var guide = self.current.guides[parseInt(g.getAttribute("data-guide"), 10)];
+      g.setAttribute("transform", "translate(" + guide[0] + " " + guide[1] + ") rotate(" +
+        (guide[2] * 180 / Math.PI) + ")");
+    });
+    var full = this.current.valid.indexOf("0") < 0;
+    var notes = [];
+    if (this.current.valid.indexOf("1") < 0) {
+      notes.push("does not assemble at any crank angle");
+    } else if (!full) {
+      notes.push("assembles only for " + d.angle + " in " + this.current.intervals.map(function (i) {
+        return "[" + fmt(i[0], 1) + "°, " + fmt(i[1], 1) + "°]";
+      }).join(" and "));
+    }
+    this.notes.textContent = notes.concat(this.current.notes).join(" · ");
+    this.root.classList.toggle("mech-partial", !full);
+    this.show(this.frame);
+  };
+
+  Player.prototype.pathData = function (name) {
+    var out = [], pen = false, n = this.data.phi.length;
+    for (var k = 0; k < n; k++) {
+      var p = this.at(name, k);
+      if (p === null) { pen = false; continue; }
+      out.push((pen ? "L" : "M") + p[0] + "," + p[1]);
+      pen = true;
+    }
+    return out.join(" ") + (this.current.valid.indexOf("0") < 0 && out.length ? " Z" : "");
+  };
+
+  Player.prototype.show = function (frame) {
+    var d = this.data, self = this, size = d.size;
+    var found = this.nearestValid(frame);
+    if (found < 0) { this.root.classList.add("mech-empty"); return; }
+    this.root.classList.remove("mech-empty");
+    frame = found;
+    this.frame = frame;
+    this.angle.value = String(frame);
+    var list = function (names) {
+      return names.split(",").map(function (n) { return self.at(n, frame); })
+        .filter(function (p) { return p !== null; })
+        .map(function (p) { return p[0] + "," + p[1]; }).join(" ");
+    };
+    this.svg.querySelectorAll(".mech-bar, .mech-line").forEach(function (line) {
+      line.setAttribute("points", list(line.getAttribute("data-points")));
+    });
+    this.svg.querySelectorAll(".mech-hinge, .mech-dot").forEach(function (c) {
+      var p = self.at(c.getAttribute("data-joint"), frame);
+      c.style.display = p ? "" : "none";
+      if (p) { c.setAttribute("cx", p[0]); c.setAttribute("cy", p[1]); }
+    });
+    this.svg.querySelectorAll(".mech-ground").forEach(function (g) {
+      var p = self.at(g.getAttribute("data-joint"), frame);
+      if (p) g.setAttribute("transform", "translate(" + p[0] + " " + p[1] + ")");
+    });
+    this.svg.querySelectorAll(".mech-block").forEach(function (g) {
+      var p = self.at(g.getAttribute("data-joint"), frame);
+      var a = g.getAttribute("data-angle"), angle = parseFloat(a);
+      if (isNaN(angle)) {
+        var values = self.current.angles[a] || [];
+        angle = values[frame] === null || values[frame] === undefined ? 0 : values[frame];
+      }
+      if (p) g.setAttribute("transform", "translate(" + p[0] + " " + p[1] + ") rotate(" + (angle * 180 / Math.PI) + ")");
+    });
+    this.svg.querySelectorAll(".mech-label").forEach(function (t) {
+      var p = self.at(t.getAttribute("data-joint"), frame);
+      t.style.display = p ? "" : "none";
+      if (p) { t.setAttribute("x", p[0] + 0.6 * size); t.setAttribute("y", -p[1] - 0.6 * size); }
+    });
+    d.arrows.forEach(function (a, index) {
+      var vector = self.current.vectors[index], p = self.at(a.at, frame);
+      var path = self.svg.querySelector('.mech-arrow[data-arrow="' + index + '"]');
+      var label = self.svg.querySelector('.mech-arrow-label[data-arrow="' + index + '"]');
+      var shown = p !== null && vector[2 * frame] !== null;
+      var v = shown ? [vector[2 * frame] * d.step, vector[2 * frame + 1] * d.step] : [0, 0];
+      path.setAttribute("d", shown ? arrowPath(p, v, size) : "");
+      label.style.display = shown ? "" : "none";
+      if (shown) { label.setAttribute("x", p[0] + v[0] + 0.4 * size); label.setAttribute("y", -(p[1] + v[1]) - 0.4 * size); }
+    });
+    this.readout.textContent = "";
+    var items = [[d.angle, d.phi[frame], 0, "°"]];
+    d.readout.forEach(function (r, index) { items.push([r.label, self.current.values[index][frame], r.digits, r.unit]); });
+    items.forEach(function (item, index) {
+      var span = element("span", { "class": "mech-item" });
+      span.appendChild(label(item[0]));
+      span.appendChild(document.createTextNode(" = "));
+      var value = index === 0 ? ((item[1] % 360) + 360) % 360 : item[1];
+      span.appendChild(element("span", { "class": "mech-value", "data-label": item[0] },
+        fmt(value, index === 0 ? (Number.isInteger(value) ? 0 : 1) : item[2])));
+      if (item[3]) span.appendChild(document.createTextNode(item[3] === "°" ? "°" : " " + item[3]));
+      self.readout.appendChild(span);
+    });
+  };
+
+  Player.prototype.toggle = function () { if (this.timer) this.stop(); else this.start(); };
+
+  Player.prototype.start = function () {
+    var self = this;
+    this.play.textContent = "\u275A\u275A pause";
+    this.play.setAttribute("aria-label", "pause");
+    this.timer = window.setInterval(function () { self.step(); }, 80);
+  };
+
+  Player.prototype.stop = function () {
+    if (!this.timer) return;
+    window.clearInterval(this.timer);
+    this.timer = null;
+    this.play.textContent = "\u25B6 play";
+    this.play.setAttribute("aria-label", "play");
+  };
+
+  Player.prototype.step = function () {
+    // a full turn plays round and round; a member that assembles over part of the turn rocks back
+    // and forth inside the range where it assembles (as a crank driven back at each limit would)
+    var n = this.data.phi.length, next = this.frame + this.direction;
+    var full = this.current.valid.indexOf("0") < 0;
+    if (full) { this.show(((next % n) + n) % n); return; }
+    if (next < 0 || next >= n || !this.valid(next)) {
+      this.direction = -this.direction;
+      next = this.frame + this.direction;
+      if (next < 0 || next >= n || !this.valid(next)) return;
+    }
+    this.show(next);
+  };
+
+  function start() {
+    document.querySelectorAll("div.mech-player").forEach(function (root) {
+      if (root.classList.contains("mech-ready")) return;
+      try {
+        root.mechPlayer = new Player(root);
+      } catch (error) {
+        root.classList.add("mech-failed");
+        if (window.console) window.console.error("mechanisms player:", error);
+      }
+    });
+  }
+
+  if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
+  else start();
+})();
