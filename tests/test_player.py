@@ -240,8 +240,18 @@ def test_play_and_pause(page):
 
 
 def record_frames(page, name: str) -> None:
-    page.eval_on_selector(player(name), """root => { const p = root.mechPlayer; p.shown = [];
-        const show = p.show; p.show = function (f) { show.call(this, f); this.shown.push(this.frame); }; }""")
+    """From now on the player notes every frame it shows, and whether its drawing was whole there (every
+    hinge shown, every bar through all its joints)."""
+    page.eval_on_selector(player(name), """root => { const p = root.mechPlayer; p.shown = []; p.broken = [];
+        const show = p.show;
+        p.show = function (f) {
+            show.call(this, f);
+            this.shown.push(this.frame);
+            const hidden = [...root.querySelectorAll('.mech-hinge')].some(c => c.style.display === 'none');
+            const short = [...root.querySelectorAll('.mech-bar')].some(b =>
+                b.getAttribute('points').trim().split(/\\s+/).length < b.dataset.points.split(',').length);
+            if (hidden || short) this.broken.push(this.frame);
+        }; }""")
 
 
 @pytest.mark.parametrize("crank", [1.5, 2.2, 4.5])
@@ -270,6 +280,8 @@ def test_a_partial_member_plays_only_where_it_assembles(page, scenes, crank):
                            timeout=30_000)
     page.click(f"{root} button.mech-play")
     shown = page.eval_on_selector(root, "r => r.mechPlayer.shown")
+    broken = page.eval_on_selector(root, "r => r.mechPlayer.broken")
+    assert broken == [], f"crank {crank} m: a broken drawing (a joint or a bar missing) at frames {sorted(set(broken))}"
     outside = sorted({k for k in shown if valid[k] != "1"})
     assert outside == [], f"crank {crank} m: frames {outside} shown where it does not assemble (valid {valid})"
     # it rocks through the whole arc it started in
