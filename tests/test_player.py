@@ -292,9 +292,8 @@ def test_a_partial_member_plays_only_where_it_assembles(page, scenes, crank):
 
 def test_phone_width_has_no_sideways_scroll_and_the_controls_show(page):
     page.set_viewport_size(PHONE)
-    page.wait_for_timeout(100)
-    SHOTS.mkdir(parents=True, exist_ok=True)
-    page.screenshot(path=str(SHOTS / "synthetic.phone.png"), full_page=True)
+    page.evaluate("new Promise(done => requestAnimationFrame(() => requestAnimationFrame(done)))")
+    assert page.evaluate("window.innerWidth") == PHONE["width"]
     assert page.evaluate("document.documentElement.scrollWidth <= document.documentElement.clientWidth"), \
         f"the page scrolls sideways at {PHONE['width']} px: scrollWidth " \
         f"{page.evaluate('document.documentElement.scrollWidth')}"
@@ -307,6 +306,27 @@ def test_phone_width_has_no_sideways_scroll_and_the_controls_show(page):
                 assert box and box["x"] >= 0 and box["x"] + box["width"] <= PHONE["width"] + 0.5, \
                     f"{name}: {selector} sticks out of the screen: {box}"
                 assert box["width"] >= 20, f"{name}: {selector} is squeezed to {box['width']} px"
+        overlaps = page.eval_on_selector(player(name), OVERLAPS)
+        assert overlaps == [], f"{name}: controls drawn over each other at {PHONE['width']} px: {overlaps}"
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    page.evaluate("window.scrollTo(0, 0)")
+    page.screenshot(path=str(SHOTS / "synthetic.phone.png"), full_page=True)
+
+
+# pairs of controls (the children of .mech-controls and what they hold) whose boxes overlap by more than a pixel
+OVERLAPS = """root => {
+    const items = [...root.querySelectorAll('.mech-controls > *, .mech-controls > * > *')];
+    const box = e => e.getBoundingClientRect(), found = [];
+    const name = e => e.className || e.tagName.toLowerCase() + (e.dataset.toggle ? '[' + e.dataset.toggle + ']' : '');
+    for (let i = 0; i < items.length; i++) for (let j = i + 1; j < items.length; j++) {
+        const a = items[i], b = items[j];
+        if (a.contains(b) || b.contains(a)) continue;
+        const p = box(a), q = box(b);
+        const w = Math.min(p.right, q.right) - Math.max(p.left, q.left);
+        const h = Math.min(p.bottom, q.bottom) - Math.max(p.top, q.top);
+        if (w > 1 && h > 1) found.push(name(a) + ' / ' + name(b) + ' (' + w.toFixed(0) + ' × ' + h.toFixed(0) + ' px)');
+    }
+    return found; }"""
 
 
 # --- (b) the built site ------------------------------------------------------------------------------------------
