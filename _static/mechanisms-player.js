@@ -266,13 +266,13 @@
   Player.prototype.step = function () {
     // a full turn plays round and round; a member that assembles over part of the turn rocks back
     // and forth inside the range where it assembles (as a crank driven back at each limit would)
-    var n = this.data.phi.length, next = this.frame + this.direction;
-    var full = this.current.valid.indexOf("0") < 0;
-    if (full) { this.show(((next % n) + n) % n); return; }
-    if (next < 0 || next >= n || !this.valid(next)) {
+    var n = this.data.phi.length, self = this;
+    var after = function () { return ((self.frame + self.direction) % n + n) % n; };
+    var next = after();
+    if (!this.valid(next)) {                  // an arc may cross φ = 0: turn back only where it ends
       this.direction = -this.direction;
-      next = this.frame + this.direction;
-      if (next < 0 || next >= n || !this.valid(next)) return;
+      next = after();
+      if (!this.valid(next)) return;
     }
     this.show(next);
   };

@@ -55,7 +55,8 @@ __all__ = [
 STEPS = 4000
 """Positions are stored in steps of 1/STEPS of the figure's extent, vectors of 1/STEPS of the longest."""
 _ARROW_SHARE = 0.25
-"""The longest arrow of a kind is drawn this share of the figure's extent long."""
+"""The longest arrow of a kind is drawn this share of the mechanism's size long (the larger side of the box
+round its joints over all frames and members; the figure's extent also takes in the arrows and extra points)."""
 
 
 @dataclass(frozen=True)
@@ -102,7 +103,7 @@ class Readout:
 class Arrow:
     """A vector drawn at a point: ``value(solution, mechanism)`` gives it (complex, one per position).
 
-    Arrows of one ``kind`` share a scale (the longest of the family is a quarter of the figure) and
+    Arrows of one ``kind`` share a scale (the longest of the family is a quarter of the mechanism's size) and
     one toggle of the player; ``kind`` is ``"velocity"``, ``"acceleration"`` or another word.
     """
 
@@ -192,6 +193,8 @@ class Scene:
     def member_index(self, **values: float) -> int:
         """The member whose parameters equal ``values`` (by name)."""
         names = [p["name"] for p in self.data["parameters"]]
+        if set(values) - set(names):
+            raise InvalidParameterError("values", values, f"values of the parameters {names} of this explorer")
         for index, key in enumerate(self.data["keys"]):
             if all(math.isclose(key[names.index(n)], v, rel_tol=1e-12, abs_tol=1e-15) for n, v in values.items()):
                 return index
@@ -299,12 +302,14 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
                              "values": list(p.values)} for p in parameters])
     for info, member in zip(data["members"], members):
         info["notes"] = list(notes(member["mechanism"])) if notes else []
-    chosen = 0 if not still else Scene(data).member_index(**still)
+    assembling = [i for i, m in enumerate(members) if m["valid"].any()]
+    chosen = Scene(data).member_index(**still) if still else assembling[0]
     valid = members[chosen]["valid"]
-    if still_angle is not None:
-        frame = int(np.argmin(np.abs(np.angle(np.exp(1j * (phi - still_angle))))))
+    frames_valid = np.flatnonzero(valid)
+    if still_angle is not None and frames_valid.size:
+        frame = int(frames_valid[np.argmin(np.abs(np.angle(np.exp(1j * (phi[frames_valid] - still_angle)))))])
     else:
-        frame = int(np.argmax(valid)) if valid.any() else 0
+        frame = int(frames_valid[0]) if frames_valid.size else 0
     return Scene(data, (chosen, frame), caption)
 
 
@@ -450,7 +455,7 @@ def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Seque
         "readout": [{"label": r.label, "unit": r.unit, "digits": r.digits} for r in readout],
         "members": [],
     }
-    extra = [name for name in members[0]["where"] if name not in joints]
+    extra = list(dict.fromkeys(name for m in members for name in m["where"] if name not in joints))
     data["dots"] = extra
     for m in members:
         data["members"].append({
@@ -602,18 +607,17 @@ def _svg(data: dict[str, Any], member_index: int, frame: int) -> str:
                         f'<rect x="{num(-1.4 * s)}" y="{num(-0.8 * s)}" width="{num(2.8 * s)}" height="{num(1.6 * s)}" '
                         f'fill="{BLOCK_FILL}" stroke="{ROLE_COLOURS["slider"]}" stroke-width="1.5" '
                         f'vector-effect="non-scaling-stroke"/></g>')
-    joints = [name for name in member["xy"] if name not in data["dots"]]
+    joints = list(dict.fromkeys(name for m in data["members"] for name in m["xy"] if name not in data["dots"]))
+    # every joint, dot and label is written, hidden where it is not at this frame: the player shows it
     for name in joints:
-        p = at(name)
-        if p is not None:
-            body.append(f'<circle class="mech-hinge" data-joint="{name}" cx="{num(p[0])}" cy="{num(p[1])}" '
-                        f'r="{num(0.55 * size)}" fill="#ffffff" stroke="#000000" stroke-width="1.2" '
-                        f'vector-effect="non-scaling-stroke"/>')
+        c, hidden = at(name) or (0.0, 0.0), "" if at(name) else ' style="display:none"'
+        body.append(f'<circle class="mech-hinge" data-joint="{name}"{hidden} cx="{num(c[0])}" cy="{num(c[1])}" '
+                    f'r="{num(0.55 * size)}" fill="#ffffff" stroke="#000000" stroke-width="1.2" '
+                    f'vector-effect="non-scaling-stroke"/>')
     for name in data["dots"]:
-        p = at(name)
-        if p is not None:
-            body.append(f'<circle class="mech-dot" data-joint="{name}" cx="{num(p[0])}" cy="{num(p[1])}" '
-                        f'r="{num(0.4 * size)}" fill="{ROLE_COLOURS["point"]}"/>')
+        c, hidden = at(name) or (0.0, 0.0), "" if at(name) else ' style="display:none"'
+        body.append(f'<circle class="mech-dot" data-joint="{name}"{hidden} cx="{num(c[0])}" cy="{num(c[1])}" '
+                    f'r="{num(0.4 * size)}" fill="{ROLE_COLOURS["point"]}"/>')
     for index, arrow in enumerate(data["arrows"]):
         p = at(arrow["at"])
         vector = member["vectors"][index]
@@ -626,10 +630,9 @@ def _svg(data: dict[str, Any], member_index: int, frame: int) -> str:
     text: list[str] = []
     if data["labels"]:
         for name in list(joints) + list(data["dots"]):
-            p = at(name)
-            if p is not None:
-                text.append(f'<text class="mech-label" data-joint="{name}" x="{num(p[0] + 0.6 * size)}" '
-                            f'y="{num(-p[1] - 0.6 * size)}">{_subscripted(name, font)}</text>')
+            c, hidden = at(name) or (0.0, 0.0), "" if at(name) else ' style="display:none"'
+            text.append(f'<text class="mech-label" data-joint="{name}"{hidden} x="{num(c[0] + 0.6 * size)}" '
+                        f'y="{num(-c[1] - 0.6 * size)}">{_subscripted(name, font)}</text>')
     for index, arrow in enumerate(data["arrows"]):
         p, vector = at(arrow["at"]), data["members"][member_index]["vectors"][index]
         shown = p is not None and vector[2 * frame] is not None
