@@ -134,13 +134,15 @@ def test_matches_shortened():
 
 def test_the_course_page_shows_what_the_tool_does(tmp_path):
     page = COURSE_PAGE.read_text(encoding="utf8")
-    files = re.findall(r"```\{code-block\} text\n:caption: (answers/[\w.-]+)\n\n(.*?)\n```", page, flags=re.S)
-    assert [name for name, _ in files] == ["answers/s01.csv", "answers/s02.csv", "answers/s03.csv", "answers/s04.csv"]
+    # the files the page shows as input (a caption that is a file name), then its sessions in order
+    files = re.findall(r"```\{code-block\} text\n:caption: ([\w./-]+)\n\n(.*?)\n```", page, flags=re.S)
+    assert [name for name, _ in files] == ["answers/s01.csv", "answers/s02.csv", "answers/s03.csv", "answers/s04.csv",
+                                           "worksheet.csv", "answers/kovalenko.csv", "answers/nunez.csv"]
     (tmp_path / "answers").mkdir()
     for name, text in files:
         (tmp_path / name).write_text(text + "\n", encoding="utf8")
     sessions = re.findall(r"```console\n\$ (.*?)\n(.*?)\n```", page, flags=re.S)
-    assert len(sessions) == 2
+    assert len(sessions) == 4
     env = dict(os.environ, PATH=os.path.dirname(sys.executable) + os.pathsep + os.environ.get("PATH", ""))
     for command, shown in sessions:
         assert command.startswith("python -m mechanisms ")
@@ -149,6 +151,10 @@ def test_the_course_page_shows_what_the_tool_does(tmp_path):
         assert result.stderr == ""
         assert matches_shortened(shown.splitlines(), result.stdout.splitlines()), \
             f"the page shows for `{command}`:\n{shown}\n\nbut the tool prints:\n{result.stdout}"
+    # the worksheet the Moodle example writes, as the page shows it
+    graded = re.search(r"```\{code-block\} text\n:caption: worksheet-graded.csv \(written by check\)\n\n(.*?)\n```",
+                       page, flags=re.S).group(1)
+    assert (tmp_path / "worksheet-graded.csv").read_text(encoding="utf8") == graded + "\n"
     sheet = re.search(r"```\{code-block\} md\n:caption: course/s01.md \(shortened\)\n\n(.*?)\n```", page,
                       flags=re.S).group(1)
     actual = (tmp_path / "course" / "s01.md").read_text(encoding="utf8").splitlines()
