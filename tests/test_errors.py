@@ -52,7 +52,7 @@ def test_describe_angles_shortens_long_lists():
 
 
 def test_crank_angle_rejects_nan_and_bad_speed():
-    with pytest.raises(errors.InvalidParameterError, match="phi must be finite"):
+    with pytest.raises(errors.InvalidParameterError, match="phi must be finite"):  # "finite real numbers"
         crank_angle([0.0, math.nan], 1.0)
     with pytest.raises(errors.InvalidParameterError, match="omega must be finite"):
         crank_angle([0.0], math.inf)
@@ -65,3 +65,53 @@ def test_crank_angle_broadcasts_and_truncates():
     assert a.omega.tolist() == [2.0, 2.0] and a.alpha.tolist() == [3.0, 3.0]
     assert crank_angle([0.0], 2.0, order=0).omega is None
     assert crank_angle([0.0], 2.0, order=1).alpha is None
+
+
+def test_a_length_beyond_the_supported_range_names_the_range():
+    # the supported lengths: 2^-510 … 2^510 m (core.validate.LENGTH_MIN/MAX); outside, the parameter is named
+    for value in (2.0**511, 2.0**-511):
+        with pytest.raises(errors.InvalidParameterError, match=r"rod must be a length from .* m to .* m: got rod"):
+            validate.require_length("rod", value)
+    assert validate.require_length("rod", 2.0**510) == 2.0**510
+
+
+def test_unknown_name_is_a_mechanism_error_and_a_key_error():
+    error = errors.UnknownNameError("link", "rocker", ["crank", "coupler"])
+    assert isinstance(error, errors.MechanismError) and isinstance(error, KeyError)
+    assert str(error) == "no link named 'rocker'; known: crank, coupler"
+
+
+def test_an_error_at_every_crank_angle_says_so_once_and_names_no_full_turn():
+    # issue 18: "at no crank angle at crank angle(s) …" and "assembles only for [-180°, 180°]" contradicted the error
+    nowhere = str(errors.AssemblyError("the links cannot reach", np.radians([0.0, 30.0]), nowhere=True))
+    assert nowhere == "the links cannot reach at crank angle(s) 0°, 30°; it assembles at no crank angle"
+    full = str(errors.AssemblyError("the joints coincide", np.radians([0.0]), valid_range=(-math.pi, math.pi)))
+    assert "assembles only" not in full
+
+
+@pytest.mark.parametrize("order", [np.array([1, 2]), np.array(2), 2.0, "2", None, [2]])
+def test_an_order_that_is_not_a_whole_number_is_refused(order):
+    if isinstance(order, np.ndarray) and order.ndim == 0:
+        assert validate.require_order(order.item()) == 2
+        return
+    with pytest.raises(errors.InvalidParameterError, match="order must be 0"):
+        validate.require_order(order)
+
+
+@pytest.mark.parametrize("phi", [None, "0.5", True, [0.1j], [[0.1], [0.2, 0.3]], {"a": 1}, [None]])
+def test_crank_angles_are_real_numbers_not_anything_numpy_converts(phi):
+    # solve(None) was reported as "phi = nan" (np.asarray(None, float)); a string as its digits
+    with pytest.raises(errors.InvalidParameterError, match="phi must be") as info:
+        crank_angle(phi, 1.0)
+    assert "nan" not in str(info.value)
+
+
+def test_rates_of_the_wrong_shape_or_size_are_named():
+    with pytest.raises(errors.InvalidParameterError, match=r"omega must be one number or one per crank angle"):
+        crank_angle([0.1, 0.2, 0.3], [1.0, 2.0])
+    with pytest.raises(errors.InvalidParameterError, match=r"omega must be of magnitude at most 1e\+50"):
+        crank_angle([0.1], 1e160)
+    with pytest.raises(errors.InvalidParameterError, match=r"alpha must be of magnitude at most 1e\+100"):
+        crank_angle([0.1], 1.0, -1e200)
+    a = crank_angle([[0.1, 0.2]], [[1.0], ], order=1)
+    assert a.omega.shape == (1, 2)

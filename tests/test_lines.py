@@ -90,9 +90,19 @@ def test_intersection_against_linear_solve_and_differences(p1, p2, v1, v2, th1, 
     np.testing.assert_allclose(cut.point.acceleration, central_difference(solve, T, 1.0, 1e-4, 2), atol=2e-3)
 
 
-def test_parallel_lines_are_an_assembly_error():
-    with pytest.raises(AssemblyError, match="parallel"):
-        line_intersection(0j, 0.3, 1j, 0.3 + np.pi, angles=[0.0])
+def test_parallel_lines_are_a_singular_position_not_an_error():
+    # Issue 18: one position with parallel lines must not cost the others. Expected (by hand): the lines
+    # through 0 and i at 0.3 and 0.3 + π are parallel (no intersection): flagged, nan; those at 0.3 and 1.3
+    # meet where the cross products say, finite.
+    phi = np.array([0.0, 1.0])
+    second = AngleMotion(np.array([0.3 + np.pi, 1.3]), np.zeros(2), np.zeros(2))
+    cut = line_intersection(0j, 0.3, PointMotion(np.array([1j, 1j]), np.zeros(2, complex), np.zeros(2, complex)),
+                            second, angles=phi)
+    assert cut.singular.tolist() == [True, False]
+    assert np.isnan(cut.point.value[0]) and np.isfinite(cut.point.value[1])
+    # K = 0 + s1·e^{0.3i} = i + s2·e^{1.3i}: s1 = Im(conj(i)·e^{1.3i})/sin(1.0) ... checked against the two lines
+    k = cut.point.value[1]
+    assert abs(((k - 0j) * np.exp(-0.3j)).imag) < 1e-15 and abs(((k - 1j) * np.exp(-1.3j)).imag) < 1e-15
 
 
 def test_distance_to_a_fixed_line_lecture_form():

@@ -54,7 +54,8 @@ class Hinge:
         Angle of the link q → J (rad) with ω, α.
     singular : ndarray of bool
         True where p, q and J are collinear: the two links are in line, the velocities of J
-        are unbounded and are set to ``nan``.
+        are unbounded and are set to ``nan``; also where p and q coincide (possible for
+        L_p = L_q only), where J itself is undefined (anywhere on a circle) and is ``nan``.
     """
 
     point: PointMotion
@@ -72,16 +73,14 @@ def _cramer(conjugate: np.ndarray, rhs: np.ndarray, inverse_det: np.ndarray) -> 
 def _assembly_failure(distance, shape, total: float, difference: float, tolerance: float, angles) -> None:
     """Raise the :class:`AssemblyError` of :func:`hinge`, naming the positions that fail."""
     where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), shape)
-    coincident = distance <= tolerance * 1e-3
-    if coincident.any():
-        raise AssemblyError("the two known joints coincide, so the hinge is indeterminate (it can be "
-                            "anywhere on a circle)", None if where is None else where[coincident])
     far = total - distance < -tolerance
     near = distance - difference < -tolerance
-    reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "
-              f"lengths {total:g} m)" if far.any() else
-              "one circle lies inside the other (joints closer than the difference of the link "
-              f"lengths {difference:g} m)")
+    if far.any():
+        reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "
+                  f"lengths {total:g} m)")
+    else:
+        reason = ("one circle lies inside the other (joints closer than the difference of the link "
+                  f"lengths {difference:g} m)")
     if far.any() and near.any():
         reason += (" and, elsewhere, one circle lies inside the other (joints closer than "
                    f"{difference:g} m)")
@@ -117,9 +116,11 @@ def _checked(p: PointMotion, q: PointMotion, length_p: float, length_q: float, b
     total = length_p + length_q
     difference = abs(length_p - length_q)
     tolerance = ASSEMBLY_TOLERANCE * total
-    # the extremes decide whether any position fails; the masks are made only then
-    shortest, longest = (np.min(distance), np.max(distance)) if distance.size else (1.0, 0.0)
-    if shortest <= tolerance * 1e-3 or shortest - difference < -tolerance or total - longest < -tolerance:
+    # the extremes decide whether any position fails; the masks are made only then. fmin/fmax skip the
+    # positions that an earlier singular position left undefined (nan), so they cannot hide a failure.
+    shortest, longest = (np.fmin.reduce(distance, axis=None), np.fmax.reduce(distance, axis=None)) if distance.size \
+        else (1.0, 0.0)
+    if shortest - difference < -tolerance or total - longest < -tolerance:
         _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
     return length_p, length_q, side, d, distance
 
@@ -141,9 +142,11 @@ def hinge_plain(p: PointMotion, q: PointMotion, length_p: float, length_q: float
              * np.sqrt(np.maximum(distance - difference, 0.0) * (distance + difference)))
     singular = twice <= 2.0 * SINGULAR_TOLERANCE * length_p * length_q
     # J = p + (m + i·branch·h)·d/D: m/D = (1 + (L_p² − L_q²)/D²)/2, h/D = h·D/D²
-    foot = 0.5 * (1.0 + (length_p - length_q) * (length_p + length_q) / distance**2)
-    height = 0.5 * side * twice / distance**2
-    arm_p = (foot + 1j * height) * d
+    # (where the known joints coincide, D = 0, J is anywhere on a circle: nan, and singular)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        foot = 0.5 * (1.0 + (length_p - length_q) * (length_p + length_q) / distance**2)
+        height = 0.5 * side * twice / distance**2
+        arm_p = (foot + 1j * height) * d
     point = p.value + arm_p
     arm_q = point - q.value
     theta_p, theta_q = np.angle(arm_p), np.angle(arm_q)
@@ -236,15 +239,17 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     twice *= np.sqrt(near, out=near)
     # |sin| of the angle between the links is h·D/(L_p·L_q); the mask uses that ratio
     singular = twice <= 2.0 * SINGULAR_TOLERANCE * length_p * length_q
-    # r_p = J − p = (m + i·branch·h)·d/D with m/D = (1 + (L_p² − L_q²)/D²)/2 and h/D = h·D/D²
-    inverse_square = np.divide(1.0, distance, out=near)
-    inverse_square *= inverse_square
-    arm_p = np.empty(d.shape, dtype=complex)
-    np.multiply(inverse_square, 0.5 * (length_p - length_q) * (length_p + length_q), out=arm_p.real)
-    arm_p.real += 0.5
-    np.multiply(twice, inverse_square, out=arm_p.imag)
-    arm_p.imag *= 0.5 * side
-    arm_p *= d
+    # r_p = J − p = (m + i·branch·h)·d/D with m/D = (1 + (L_p² − L_q²)/D²)/2 and h/D = h·D/D²; where the
+    # known joints coincide (D = 0, possible only for L_p = L_q) J is anywhere on a circle: nan, and singular
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inverse_square = np.divide(1.0, distance, out=near)
+        inverse_square *= inverse_square
+        arm_p = np.empty(d.shape, dtype=complex)
+        np.multiply(inverse_square, 0.5 * (length_p - length_q) * (length_p + length_q), out=arm_p.real)
+        arm_p.real += 0.5
+        np.multiply(twice, inverse_square, out=arm_p.imag)
+        arm_p.imag *= 0.5 * side
+        arm_p *= d
     point = p.value + arm_p
     arm_q = np.subtract(point, q.value, out=d)          # r_q = J − q (d is not needed any more)
     theta_p, theta_q = angle_of(arm_p), angle_of(arm_q)

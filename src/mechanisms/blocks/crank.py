@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.validate import require_finite_array, require_order
+from ..core.validate import ALPHA_MAX, OMEGA_MAX, require_angles, require_order, require_rates
 from ..core.angles import constant
 from ..core.motion import AngleMotion, PointMotion, point_on_link
 
@@ -18,13 +18,20 @@ def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order:
     Parameters
     ----------
     phi : array_like
-        Crank angles φ (rad), counter-clockwise from +x.
+        Crank angles φ (rad), counter-clockwise from +x: finite real numbers, |φ| ≤ 2^52 rad.
     omega : float or array_like
-        Angular velocity φ_t (rad/s) at each position.
+        Angular velocity φ_t (rad/s) at each position: one number or one per crank angle (an array
+        that broadcasts to the shape of ``phi``), each finite, |ω| ≤ 1e50 rad/s.
     alpha : float or array_like
-        Angular acceleration φ_tt (rad/s²) at each position.
+        Angular acceleration φ_tt (rad/s²) at each position, likewise; |α| ≤ 1e100 rad/s².
     order : int
         0, 1 or 2: how many time derivatives to keep.
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming ``phi``, ``omega``, ``alpha`` or ``order`` when it is not of the kind or range above
+        (None, a string, a bool, a complex number, NaN, an array of the wrong shape …).
 
     Notes
     -----
@@ -32,12 +39,13 @@ def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order:
     (:func:`~mechanisms.motion.constant`), which takes no memory.
     """
     order = require_order(order)
-    phi = require_finite_array("phi", phi, "crank angles in rad")
+    phi = require_angles("phi", phi)
+    rates = (("omega", omega, OMEGA_MAX, "rad/s"), ("alpha", alpha, ALPHA_MAX, "rad/s²"))
+    checked = [require_rates(name, value, phi.shape, high, unit) for name, value, high, unit in rates]
     if order == 0:
         return AngleMotion(phi)
     derivatives = []
-    for name, value in (("omega", omega), ("alpha", alpha))[:order]:
-        value = require_finite_array(name, value, "rad/s" if name == "omega" else "rad/s²")
+    for value in checked[:order]:
         # a constant rate is a broadcast view of one number (no memory); an array is copied
         derivatives.append(constant(float(value), phi.shape) if value.ndim == 0
                            else np.broadcast_to(value, phi.shape).astype(float))

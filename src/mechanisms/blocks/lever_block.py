@@ -32,7 +32,7 @@ import numpy as np
 
 from ..core.errors import InvalidParameterError
 from ..core.validate import require_length
-from ..core.angles import unit_vector_fast
+from ..core.angles import unit_vector_fast, wrap_angle
 from ..core.motion import AngleMotion, Motion, PointMotion, polar
 
 __all__ = ["LeverBlock", "lever_block", "lever_through_pivot"]
@@ -162,8 +162,11 @@ def lever_through_pivot(crank: AngleMotion, radius: float, pivot_angle: float) -
     constraint Jacobian is singular, so neither the general formulas nor Newton's method apply.
     """
     radius = require_length("radius", radius)
-    half = 0.5 * (crank.value - pivot_angle)
-    xi = 0.5 * (crank.value + pivot_angle) + 0.5 * np.pi
+    # φ/2 is exact and is reduced modulo 2π first (core.angles.wrap_angle, right to an ulp of π for any φ):
+    # (φ ± γ)/2 formed from a crank angle of 1e15 rad would lose its last 0.06 rad to rounding
+    half_phi = wrap_angle(0.5 * np.asarray(crank.value, dtype=float))
+    half = half_phi - 0.5 * pivot_angle
+    xi = half_phi + (0.5 * pivot_angle + 0.5 * np.pi)
     s = 2.0 * radius * np.sin(half)
     singular = np.zeros(np.shape(crank.value), dtype=bool)
     if crank.order == 0:

@@ -163,11 +163,8 @@ def line_intersection(first_point: PointMotion | complex, first_angle: AngleMoti
     Returns
     -------
     LineIntersection
-
-    Raises
-    ------
-    AssemblyError
-        Where the lines are parallel, so there is no single intersection.
+        Where the lines are parallel to within round-off (|sin(θ₂ − θ₁)| ≤ 1e-12) there is no single
+        intersection: those positions are flagged ``singular`` and their values are ``nan``.
 
     Notes
     -----
@@ -191,15 +188,22 @@ def line_intersection(first_point: PointMotion | complex, first_angle: AngleMoti
     d_bar = _conj(d)
     cross = _part(_product(_conj(e1), e2, order), np.imag)
     parallel = np.abs(cross[0]) <= _PARALLEL
-    if np.any(parallel):
-        where = _where(angles, parallel)
-        raise AssemblyError("the two lines are parallel, so they have no single intersection", angles=where)
-    s1 = _quotient(_part(_product(d_bar, e2, order), np.imag), cross, order)
-    s2 = _quotient(_part(_product(d_bar, e1, order), np.imag), cross, order)
-    offset = _product(s1, e1, order)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s1 = _quotient(_part(_product(d_bar, e2, order), np.imag), cross, order)
+        s2 = _quotient(_part(_product(d_bar, e1, order), np.imag), cross, order)
+        offset = _product(s1, e1, order)
     point = PointMotion(*(None if x is None else q + x for q, x in zip(q1.derivatives(), offset)))
-    return LineIntersection(point.truncated(order), Motion(*s1).truncated(order), Motion(*s2).truncated(order),
-                            parallel)
+    point, first, second = point.truncated(order), Motion(*s1).truncated(order), Motion(*s2).truncated(order)
+    if np.any(parallel):
+        # no single intersection (or a whole line of them): undefined, and flagged, not an error that
+        # would lose every other position of the table
+        point, first, second = (_undefined_where(m, parallel) for m in (point, first, second))
+    return LineIntersection(point, first, second, parallel)
+
+
+def _undefined_where(motion, mask: np.ndarray):
+    """The motion with every value and derivative set to nan at the positions of ``mask``."""
+    return type(motion)(*(None if x is None else np.where(mask, np.nan, x) for x in motion.derivatives()))
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,7 @@ __all__ = [
     "InvalidParameterError",
     "AssemblyError",
     "StructureError",
+    "UnknownNameError",
     "MissingDerivativeError",
     "DeadCentreWarning",
     "describe_angles",
@@ -57,17 +58,28 @@ class AssemblyError(MechanismError, ValueError):
     angles : array_like of float, optional
         The crank angles (rad) where assembly fails; named in the message in degrees.
     valid_range : tuple of float, optional
-        The crank-angle interval (rad) in which the mechanism assembles, if known.
+        The crank-angle interval (rad) in which the mechanism assembles, if known. A full turn (an
+        interval of length 2π or more) is not named: "it assembles only for [-180°, 180°]" would
+        contradict the error.
+    nowhere : bool
+        True if the mechanism assembles at no crank angle at all; the message then says so after
+        naming the crank angles asked for.
     """
 
-    def __init__(self, reason: str, angles: ArrayLike | None = None, valid_range: tuple[float, float] | None = None):
+    def __init__(self, reason: str, angles: ArrayLike | None = None, valid_range: tuple[float, float] | None = None,
+                 nowhere: bool = False):
         self.reason = reason
         self.angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
+        if valid_range is not None and valid_range[1] - valid_range[0] >= 2.0 * math.pi * (1.0 - 1e-12):
+            valid_range = None
         self.valid_range = valid_range
+        self.nowhere = nowhere
         message = reason
         if self.angles is not None and self.angles.size:
             message += f" at crank angle(s) {describe_angles(self.angles)}"
-        if valid_range is not None:
+        if nowhere:
+            message += "; it assembles at no crank angle"
+        elif valid_range is not None:
             message += f"; it assembles only for crank angles in {describe_range(*valid_range)}"
         super().__init__(message)
 
@@ -78,6 +90,33 @@ class StructureError(MechanismError, ValueError):
 
     The message names where (the file, the group, the key) and what is wrong.
     """
+
+
+class UnknownNameError(MechanismError, KeyError):
+    """A link, joint, point or slider was asked for by a name the mechanism does not have.
+
+    It is also a :class:`KeyError` (a solution's lookups are lookups by name), so code that caught
+    the bare ``KeyError`` of earlier versions still catches it; unlike a bare ``KeyError`` its message
+    reads as a sentence and names the known names.
+
+    Parameters
+    ----------
+    what : str
+        What was looked up (``"link"``, ``"point"``, ``"slider"``).
+    name : object
+        The name given.
+    known : iterable of str
+        The names there are.
+    """
+
+    def __init__(self, what: str, name: object, known):
+        self.what = what
+        self.name = name
+        self.known = list(known)
+        super().__init__(f"no {what} named {name!r}; known: {', '.join(self.known)}")
+
+    def __str__(self) -> str:            # KeyError's own __str__ would print the repr of the message
+        return str(self.args[0])
 
 
 class MissingDerivativeError(MechanismError, TypeError):

@@ -18,8 +18,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..blocks.crank import crank_angle
-from ..core.errors import DeadCentreWarning, describe_angles
-from ..core.validate import require_finite, require_order
+from ..core.errors import DeadCentreWarning, UnknownNameError, describe_angles
+from ..core.validate import require_coordinate, require_order
 from ..core.motion import AngleMotion, Motion, PointMotion, point_on_link
 from .groups import Group
 
@@ -86,22 +86,55 @@ class Solution:
 
     @staticmethod
     def _lookup(table: dict, name: str, what: str):
-        try:
-            return table[name]
-        except KeyError:
-            raise KeyError(f"no {what} named {name!r}; known: {', '.join(table)}") from None
+        """``table[name]``, or :class:`UnknownNameError` (a :class:`KeyError` too) for a name it does not have,
+        whatever the name's type (an unhashable one included)."""
+        if not isinstance(name, str) or name not in table:
+            raise UnknownNameError(what, name, table)
+        return table[name]
 
     def angle(self, link: str) -> AngleMotion:
-        """The angle of a link (rad) with ω (rad/s) and α (rad/s²)."""
+        """The angle of a link (rad) with ω (rad/s) and α (rad/s²).
+
+        Raises
+        ------
+        UnknownNameError
+            If the mechanism has no link of that name (also a :class:`KeyError`).
+        """
         return self._lookup(self._angles, link, "link")
 
     def point(self, name: str) -> PointMotion:
-        """A named joint ``x + iy`` (m) with its velocity and acceleration."""
+        """A named joint ``x + iy`` (m) with its velocity and acceleration.
+
+        Raises
+        ------
+        UnknownNameError
+            If the mechanism has no joint of that name (also a :class:`KeyError`).
+        """
         return self._lookup(self._points, name, "point")
 
     def slider(self, name: str) -> Motion:
-        """A sliding pair: position along its guide (m), its velocity and acceleration."""
+        """A sliding pair: position along its guide (m), its velocity and acceleration.
+
+        Raises
+        ------
+        UnknownNameError
+            If the mechanism has no sliding pair of that name (also a :class:`KeyError`).
+        """
         return self._lookup(self._sliders, name, "slider")
+
+    def scaled(self, factor: float) -> "Solution":
+        """The same solution with every length multiplied by ``factor`` (points, sliders, extras; angles kept).
+
+        :meth:`Mechanism.solve` uses it to bring back a mechanism solved at a scale of its own; a power of
+        two as ``factor`` makes it exact.
+        """
+        def times(table: dict) -> dict:
+            return {name: motion * factor for name, motion in table.items()}
+
+        extras = {joint: {key: None if value is None else np.asarray(value) * factor for key, value in values.items()}
+                  for joint, values in self.extras.items()}
+        return Solution(self.phi, self.order, angles=self._angles, points=times(self._points), links=self._links,
+                        sliders=times(self._sliders), extras=extras, singular=self.singular)
 
     def with_points(self, points: dict[str, PointMotion]) -> "Solution":
         """The same solution with more named points (a coupler point, an instant centre) to look up."""
@@ -119,9 +152,16 @@ class Solution:
             Distance u (m) from the link's first joint along the link.
         left : float
             Distance v (m) to the left of the link (counter-clockwise side).
+
+        Raises
+        ------
+        UnknownNameError
+            If the mechanism has no link of that name (also a :class:`KeyError`).
+        InvalidParameterError
+            If ``along`` or ``left`` is not a finite number of magnitude at most 2^500 m.
         """
         first_joint = self._lookup(self._links, link, "link")
-        along, left = require_finite("along", along), require_finite("left", left)
+        along, left = require_coordinate("along", along), require_coordinate("left", left)
         return point_on_link(self.point(first_joint), self.angle(link), along, left)
 
 
@@ -175,6 +215,26 @@ class Guide:
 
 registry: dict[str, type["Mechanism"]] = {}
 
+_SCALE_BAND = 2.0**64
+"""A mechanism whose largest length is within [1/_SCALE_BAND, _SCALE_BAND] m is solved as it is."""
+
+
+def _scale_of(mechanism: "Mechanism") -> float:
+    """1.0, or the power of four 4^k ≤ the mechanism's largest length (m) when that is outside the band where
+    squares of lengths are safe: the mechanism is then solved with its lengths divided by 4^k (exact)."""
+    sizes = [abs(float(v)) for v in mechanism.preserved_distances().values()]
+    size = max(sizes, default=1.0)
+    if not math.isfinite(size) or size == 0.0 or 1.0 / _SCALE_BAND <= size <= _SCALE_BAND:
+        return 1.0
+    _, exponent = math.frexp(size)           # size = m·2^exponent, m in [0.5, 1)
+    return 4.0 ** ((exponent - 1) // 2)
+
+
+def _finite_at(solution: Solution, where: np.ndarray) -> bool:
+    """True if every joint's position is finite at the positions of ``where``."""
+    return all(bool(np.all(np.isfinite(np.broadcast_to(solution.point(name).value, where.shape)[where])))
+               for name in solution.point_names)
+
 
 class Mechanism(ABC):
     """Base class of the book's mechanisms.
@@ -214,15 +274,42 @@ class Mechanism(ABC):
         Returns
         -------
         Solution
+            Every position, the singular ones included: where the constraints' Jacobian is singular to
+            within round-off (a dead centre, a change point, a block at its lever's pivot, parallel
+            lines, two joints that coincide) ``Solution.singular`` is True, the unbounded or undefined
+            values there are ``inf`` or ``nan`` on purpose, and a :class:`DeadCentreWarning` says so.
+            Nowhere else is a value ``nan``.
+
+        Raises
+        ------
+        InvalidParameterError
+            Naming ``phi``, ``omega``, ``alpha`` or ``order`` (see :func:`~mechanisms.blocks.crank.crank_angle`).
+        AssemblyError
+            Naming the crank angles at which the mechanism cannot be assembled.
+
+        Notes
+        -----
+        A mechanism whose largest length lies outside [2^-64, 2^64] m is solved at a scale of its
+        own: its lengths divided by a power of four (exact, so the positions are those of the
+        mechanism itself to rounding) and the lengths of the solution multiplied back, so that no
+        square of a length overflows or underflows (lengths from 2^-510 to 2^510 m).
         """
         order = require_order(order)
-        solution = self._solve(crank_angle(phi, omega, alpha, order), order)
-        if order and solution.singular.any():
+        crank = crank_angle(phi, omega, alpha, order)
+        scale = _scale_of(self)
+        inner = None if scale == 1.0 else self._rescaled(1.0 / scale)
+        solution = self._solve(crank, order) if inner is None else inner._solve(crank, order).scaled(scale)
+        if solution.singular.any() and (order or not _finite_at(solution, solution.singular)):
             warnings.warn(
                 f"{type(self).__name__}: velocities/accelerations are unbounded (dead centre) at crank "
                 f"angle(s) {describe_angles(solution.phi[solution.singular])}; see Solution.singular",
                 DeadCentreWarning, stacklevel=2)
         return solution
+
+    def _rescaled(self, factor: float) -> "Mechanism | None":
+        """The same mechanism with every length multiplied by ``factor`` (a power of four), or ``None`` if the
+        class cannot make one (it is then solved as it is)."""
+        return None
 
     @classmethod
     def example(cls) -> "Mechanism":

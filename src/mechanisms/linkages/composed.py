@@ -523,6 +523,7 @@ class Linkage(Mechanism):
             points[group.joint] = crossing.point
             state.sliders[group.first_slider] = crossing.along_first
             state.sliders[group.second_slider] = crossing.along_second
+            state.singular = state.singular | crossing.singular
             for name, (_, direction) in ((group.first_slider, first), (group.second_slider, second)):
                 angles[name] = (direction if isinstance(direction, AngleMotion)
                                 else self._fixed_angle(direction, state))
@@ -535,6 +536,7 @@ class Linkage(Mechanism):
                 slot = direction + group.slot_angle
             crossing = line_intersection(points[group.block], slot, through, direction, angles=phi)
             points[group.joint] = crossing.point
+            state.singular = state.singular | crossing.singular
             state.sliders[group.slider] = crossing.along_first * -1.0     # the block from the yoke's point
             state.sliders[group.yoke] = crossing.along_second
             for name, angle in ((group.slider, slot), (group.yoke, direction)):

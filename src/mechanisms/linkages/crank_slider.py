@@ -20,7 +20,7 @@ from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_line import slider_on_line
 from ..blocks.crank import crank_pin
 from ..core.errors import AssemblyError, describe_range
-from ..core.validate import require_branch, require_finite, require_length
+from ..core.validate import require_branch, require_coordinate, require_length
 from ..core.motion import AngleMotion, Motion, fixed_point
 
 __all__ = ["CrankSlider", "assembly_ranges"]
@@ -100,7 +100,7 @@ class CrankSlider(Mechanism):
     def __init__(self, crank: float, rod: float, offset: float = 0.0, branch: int = 1):
         self.crank = require_length("crank", crank)
         self.rod = require_length("rod", rod)
-        self.offset = require_finite("offset", offset)
+        self.offset = require_coordinate("offset", offset)
         self.branch = require_branch(branch)
         ranges = assembly_ranges(self.crank, self.rod, self.offset)
         if ranges == []:
@@ -135,6 +135,9 @@ class CrankSlider(Mechanism):
         warnings.warn("CrankSlider.assembly_ranges is deprecated: use assembly_intervals()", DeprecationWarning,
                       stacklevel=2)
         return assembly_ranges(self.crank, self.rod, self.offset)
+
+    def _rescaled(self, factor: float) -> "CrankSlider":
+        return CrankSlider(self.crank * factor, self.rod * factor, self.offset * factor, self.branch)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         # long arrays block by block, in the processor's cache (chapter 9)

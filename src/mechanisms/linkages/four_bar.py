@@ -16,6 +16,7 @@ angles in which a linkage assembles.
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from typing import Sequence
 
 import numpy as np
@@ -28,7 +29,8 @@ from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_circle import hinge
 from ..blocks.crank import crank_pin
 from ..core.errors import AssemblyError, InvalidParameterError, describe_range
-from ..core.validate import require_branch, require_finite, require_length, require_flag, require_pair
+from ..core.exact import squared_distance_equals
+from ..core.validate import require_branch, require_length, require_flag, require_pair
 from ..core.motion import AngleMotion, Motion, fixed_point
 
 __all__ = [
@@ -41,8 +43,10 @@ __all__ = [
     "change_point_angles",
 ]
 
-CHANGE_POINT_TOLERANCE = 1e-9
-"""Relative tolerance of the length equalities that make a linkage a change-point linkage."""
+CHANGE_POINT_TOLERANCE = 0.0
+"""Kept for compatibility: a linkage is a change-point linkage only where its length equalities hold
+exactly for the given doubles (:func:`change_point_angles`); 1e-10 away from one it is an ordinary
+linkage, whose branch the general solution keeps."""
 
 
 # --- the lecture's formulas -------------------------------------------------------------------
@@ -178,7 +182,10 @@ def assembly_intervals(crank: float, coupler: float, rocker: float,
     the angle β = |φ − θ0| ∈ [0, π] between OA and OC, so the conditions are
     ``β ≥ β_min`` (|AC| = |L2 − L3|) and ``β ≤ β_max`` (|AC| = L2 + L3), chapter 4.
     """
-    a, b = frame
+    # scale-free: lengths divided by a power of two (exact), so that no square overflows or underflows
+    _, exponent = math.frexp(max(crank, coupler, rocker, abs(frame[0]), abs(frame[1])))
+    crank, coupler, rocker = (math.ldexp(v, -exponent) for v in (crank, coupler, rocker))
+    a, b = (math.ldexp(v, -exponent) for v in frame)
     distance = math.hypot(a, b)
     theta0 = math.atan2(b, a)
     low, high = abs(distance - crank), distance + crank
@@ -204,15 +211,19 @@ def change_point_angles(crank: float, coupler: float, rocker: float,
     pass on. It happens at φ = θ0 (A on the segment towards C) when |d − L1| = |L2 − L3|, and
     at φ = θ0 + π when d + L1 = L2 + L3 (d = |OC|, θ0 its direction); there |AC| passes its
     extreme, so the two branches touch without the crank having to turn back.
+
+    The equalities are decided exactly for the given doubles (d² = a² + b² in rational arithmetic,
+    :mod:`mechanisms.core.exact`), never with a tolerance: a linkage 1e-10 from the change-point
+    condition is an ordinary one, which keeps its side of A → C at every crank angle.
     """
     a, b = frame
-    distance = math.hypot(a, b)
     theta0 = math.atan2(b, a)
-    scale = crank + coupler + rocker + distance
+    l1, l2, l3 = (Fraction(v) for v in (crank, coupler, rocker))
     found = []
-    if abs(abs(distance - crank) - abs(coupler - rocker)) <= CHANGE_POINT_TOLERANCE * scale:
+    # |d − L1| = |L2 − L3|  ⇔  d = L1 + (L2 − L3) or d = L1 − (L2 − L3), with d ≥ 0
+    if any(squared_distance_equals((a, b), l1 + sign * (l2 - l3)) for sign in (1, -1)):
         found.append(theta0)
-    if abs(distance + crank - coupler - rocker) <= CHANGE_POINT_TOLERANCE * scale:
+    if squared_distance_equals((a, b), l2 + l3 - l1):          # d + L1 = L2 + L3
         found.append(theta0 + math.pi)
     return tuple(found)
 
@@ -313,6 +324,10 @@ class FourBar(Mechanism):
         """Crank-angle intervals (rad) in which the linkage assembles (see the module function)."""
         return assembly_intervals(self.crank, self.coupler, self.rocker, self.frame)
 
+    def _rescaled(self, factor: float) -> "FourBar":
+        return FourBar(self.crank * factor, self.coupler * factor, self.rocker * factor,
+                       (self.frame[0] * factor, self.frame[1] * factor), self.branch, self.keep_side)
+
     def groups(self) -> tuple[Group, ...]:
         return (Crank("O", "A"), RRR("B", "A", "C", "coupler", "rocker"))
 
@@ -349,9 +364,7 @@ class FourBar(Mechanism):
             elif intervals:
                 reason += " (it assembles for crank angles in " + " and ".join(
                     describe_range(lo, hi) for lo, hi in intervals) + ")"
-            else:
-                reason += " (at no crank angle)"
-            raise AssemblyError(reason, error.angles, valid) from None
+            raise AssemblyError(reason, error.angles, valid, nowhere=not intervals) from None
         origin = fixed_point(0.0, phi, order)
         return Solution(phi, order,
                         angles={"crank": crank, "coupler": joint.angle_p, "rocker": joint.angle_q},

@@ -66,6 +66,11 @@ class LambdaMechanism(Mechanism):
         self.branch = require_branch(branch)
         self.four_bar = FourBar(self.crank, self.half_coupler, self.half_coupler, (-self.ground, 0.0), self.branch,
                                  keep_side)
+        self.keep_side = self.four_bar.keep_side
+
+    def _rescaled(self, factor: float) -> "LambdaMechanism":
+        return LambdaMechanism(self.crank * factor, self.half_coupler * factor, self.ground * factor, self.branch,
+                               self.keep_side)
 
     def assembly_intervals(self) -> list[tuple[float, float]]:
         """Those of its four-bar O–A–C–D (see :meth:`FourBar.assembly_intervals`)."""
@@ -76,7 +81,7 @@ class LambdaMechanism(Mechanism):
             inner = self.four_bar._solve(crank, order)
         except AssemblyError as error:
             raise AssemblyError(error.reason.replace("four-bar", "lambda mechanism"), error.angles,
-                                error.valid_range) from None
+                                error.valid_range, error.nowhere) from None
         coupler = inner.angle("coupler")
         end = point_on_link(inner.point("A"), coupler, 2.0 * self.half_coupler)
         return Solution(crank.value, order,

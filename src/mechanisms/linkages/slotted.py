@@ -33,14 +33,15 @@ from ..blocks.crank import crank_pin
 from ..blocks.lever_block import LeverBlock, lever_block, lever_through_pivot
 from ..blocks.lines import angle_from_distance, circle_on_line, distance_to_line, line_intersection
 from ..core.errors import InvalidParameterError
-from ..core.validate import require_branch, require_finite, require_length, require_pair
+from ..core.exact import squared_distance_equals, squared_distance_exceeds
+from ..core.validate import require_branch, require_coordinate, require_finite, require_length, require_pair
 from ..core.motion import AngleMotion, Motion, PointMotion, fixed_point, point_on_link, polar
 
 __all__ = ["SlottedLever", "RockerInBlock", "Shaper", "SlottedRockers", "SliderOnCoupler"]
 
-# A pivot whose distance from O differs from the crank radius by less than this (relative) is on the
-# crank circle: the block passes through the pivot.
-THROUGH_PIVOT_TOLERANCE = 1e-9
+
+def _scaled_pair(pair: tuple[float, float], factor: float) -> tuple[float, float]:
+    return pair[0] * factor, pair[1] * factor
 
 
 def _lever_part(crank: AngleMotion, radius: float, pivot: complex, kind: str) -> tuple[PointMotion, LeverBlock]:
@@ -99,7 +100,9 @@ class SlottedLever(Mechanism):
         self.pivot = require_pair("pivot", pivot)
         self.pivot_point = complex(*self.pivot)
         self.pivot_distance = abs(self.pivot_point)
-        if abs(self.pivot_distance - self.crank) <= THROUGH_PIVOT_TOLERANCE * self.crank:
+        # on the crank circle exactly (a² + b² = r² for the given doubles, core.exact): a pivot 1e-10 off it
+        # is an ordinary pivot, which the general lever block solves right
+        if squared_distance_equals(self.pivot, self.crank):
             self.kind = "through pivot"
         else:
             self.kind = "oscillating" if self.pivot_distance > self.crank else "rotating"
@@ -111,6 +114,9 @@ class SlottedLever(Mechanism):
             if self.lever < reach * (1 - 1e-12):
                 raise InvalidParameterError("lever", lever, f"at least |OC| + r = {reach:g} m, so that the "
                                             "block stays in the slot")
+
+    def _rescaled(self, factor: float) -> "SlottedLever":
+        return SlottedLever(self.crank * factor, _scaled_pair(self.pivot, factor), self.lever * factor)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         # long arrays block by block, in the processor's cache (chapter 9)
@@ -196,6 +202,9 @@ class RockerInBlock(Mechanism):
         self.crank, self.pivot, self.kind = self._lever.crank, self._lever.pivot, self._lever.kind
         self.reach = self._lever.lever if reach is None else require_length("reach", reach)
 
+    def _rescaled(self, factor: float) -> "RockerInBlock":
+        return RockerInBlock(self.crank * factor, _scaled_pair(self.pivot, factor), self.reach * factor)
+
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         pin, block = _lever_part(crank, self.crank, self._lever.pivot_point, self.kind)
         xi = block.lever_angle
@@ -275,11 +284,11 @@ class Shaper(Mechanism):
         self.pivot = require_pair("pivot", pivot)
         self.lever = require_length("lever", lever)
         self.rod = require_length("rod", rod)
-        self.ram_height = require_finite("ram_height", ram_height)
+        self.ram_height = require_coordinate("ram_height", ram_height)
         self.branch = require_branch(branch)
         self.pivot_point = complex(*self.pivot)
         distance = abs(self.pivot_point)
-        if distance <= self.crank * (1 + THROUGH_PIVOT_TOLERANCE):
+        if not squared_distance_exceeds(self.pivot, self.crank):      # |OC| > r, exactly
             raise InvalidParameterError("pivot", pivot, f"farther from the crank centre than the crank "
                                         f"(|OC| > r = {self.crank:g} m) for an oscillating lever; got |OC| = "
                                         f"{distance:g} m")
@@ -287,6 +296,10 @@ class Shaper(Mechanism):
             raise InvalidParameterError("lever", lever, f"at least |OC| + r = {distance + self.crank:g} m, so "
                                         "that the block stays in the slot")
         self._lever = SlottedLever(self.crank, self.pivot, self.lever)
+
+    def _rescaled(self, factor: float) -> "Shaper":
+        return Shaper(self.crank * factor, _scaled_pair(self.pivot, factor), self.lever * factor, self.rod * factor,
+                      self.ram_height * factor, self.branch)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         base = self._lever._solve(crank, order)
@@ -371,6 +384,10 @@ class SlottedRockers(Mechanism):
         if self._lever.kind == "through pivot":
             raise InvalidParameterError("pivot", pivot, "off the crank circle (|O O1| ≠ r)")
         self.lever = max(self._lever.lever, abs(complex(*self.rocker_pivot) - complex(*self.pivot)) + self.rocker)
+
+    def _rescaled(self, factor: float) -> "SlottedRockers":
+        return SlottedRockers(self.crank * factor, _scaled_pair(self.pivot, factor),
+                              _scaled_pair(self.rocker_pivot, factor), self.rocker * factor, self.branch)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         pin, block = _lever_part(crank, self.crank, self._lever.pivot_point, self._lever.kind)
@@ -463,12 +480,16 @@ class SliderOnCoupler(Mechanism):
                  offset: float = 0.0):
         self.crank = require_length("crank", crank)
         self.rod = require_length("rod", rod)
-        self.offset = require_finite("offset", offset)
+        self.offset = require_coordinate("offset", offset)
         self.guide_point = require_pair("guide_point", guide_point)
         self.guide_angle = require_finite("guide_angle", guide_angle)
         if self.rod <= self.crank + abs(self.offset):
             raise InvalidParameterError("rod", rod, f"greater than crank + |offset| = "
                                         f"{self.crank + abs(self.offset):g} m for a full revolution")
+
+    def _rescaled(self, factor: float) -> "SliderOnCoupler":
+        return SliderOnCoupler(self.crank * factor, self.rod * factor, _scaled_pair(self.guide_point, factor),
+                               self.guide_angle, self.offset * factor)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         pin = crank_pin(crank, self.crank)
