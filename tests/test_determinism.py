@@ -253,6 +253,40 @@ def test_changed_outputs_names_notebook_cell_and_output_type():
     assert problems[1].startswith("book/x.ipynb, cell 0 ('plot()'), output 1 (display_data): image/png changed")
 
 
+def nbval_cell_changes(item) -> list[str]:
+    """The same comparison on nbval's own execution of one cell (``item``, an nbval cell item, after its
+    ``runtest``), for a conftest hook that spares the second execution::
+
+        @pytest.hookimpl(hookwrapper=True)
+        def pytest_runtest_call(item):
+            yield
+            if type(item).__name__ == "IPyNbCell":
+                from test_determinism import nbval_cell_changes
+                problems = nbval_cell_changes(item)
+                assert problems == [], "re-executing changes stored outputs:\n" + "\n".join(problems)
+
+    nbval gathers a cell's streams of one name into one output and its kernel's execution counts skip
+    ``nbval-skip`` cells, so streams are gathered alike on the stored side and counts are not compared.
+    """
+    from nbval.plugin import coalesce_streams
+
+    outputs = getattr(item, "test_outputs", None)
+    if outputs is None or tags(item.cell) & IGNORED_TAGS or item.cell.get("execution_count") is None:
+        return []
+
+    def gathered(cell_outputs):
+        copies = [nbformat.from_dict({k: None if k == "execution_count" else v for k, v in o.items()})
+                  for o in cell_outputs]
+        return coalesce_streams(copies)
+
+    stored = nbformat.v4.new_code_cell(item.cell.source, outputs=gathered(item.cell.outputs))
+    now = nbformat.v4.new_code_cell(item.cell.source, outputs=gathered(outputs))
+    name = pathlib.Path(str(item.fspath)).resolve()
+    name = relative(name) if ROOT in name.parents else name.name
+    return [p.replace(", cell 0 ", f", cell {item.cell_num} ", 1)
+            for p in changed_outputs(name, [stored], [now])]
+
+
 @pytest.mark.parametrize("path", notebooks(), ids=relative)
 def test_reexecution_changes_no_output(path):
     stored = nbformat.read(path, as_version=4)
