@@ -337,10 +337,10 @@ def test_rates_are_missing_at_singular_frames_never_nan():
                         for k in range(len(phi))])
         error = np.max(np.abs(got - np.where(singular, 0, exact)))
         assert error <= step / scale * math.sqrt(2) / 2 * (1 + 1e-9), f"{data['arrows'][index]['label']}: off by {error}"
-        # the longest arrow of a kind is a quarter of the figure's extent
-        extent = step * 4000
+        # the longest arrow of a kind is drawn a quarter of the mechanism's size long: the larger side of the box
+        # round its joints over the turn, here x from −1 m (A at 180°) to 4 m (B at 0°): 5 m
         longest = np.max(np.abs(got)) * scale
-        assert longest == pytest.approx(0.25 * extent, rel=2e-3)
+        assert longest == pytest.approx(0.25 * 5.0, rel=2e-3)
 
 
 def test_json_is_strict_for_a_family_with_partial_members_and_arrows():
