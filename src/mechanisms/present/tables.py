@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from typing import Sequence
 
 __all__ = ["MarkdownTable", "markdown_table", "difference", "magnitude"]
@@ -24,9 +25,21 @@ class MarkdownTable:
 
 
 def _cell(value, fmt: str) -> str:
+    """One cell: a string as it is, a number formatted; a number that rounds to zero is printed
+    without a minus sign (``-0.0001`` and ``-0.0`` with ``".3f"`` give ``"0.000"``, not ``"-0.000"``)."""
     if isinstance(value, str):
         return value
-    return format(value, fmt)
+    text = format(value, fmt)
+    if "-" in text and _rounds_to_zero(text):
+        return format(0.0, fmt)
+    return text
+
+
+def _rounds_to_zero(text: str) -> bool:
+    """Whether a formatted number shows only zeros (its exponent aside): ``"-0.000"``, ``"-0e+00"``."""
+    mantissa = re.split(r"[eE]", text, maxsplit=1)[0]
+    digits = re.findall(r"[0-9]", mantissa)
+    return bool(digits) and set(digits) == {"0"} and not re.search(r"(?i)inf|nan", text)
 
 
 def markdown_table(headers: Sequence[str], rows: Sequence[Sequence], formats: str | Sequence[str] = ".4g",
@@ -40,7 +53,8 @@ def markdown_table(headers: Sequence[str], rows: Sequence[Sequence], formats: st
     rows : sequence of sequences
         The cells; numbers are formatted, strings kept.
     formats : str or sequence of str
-        Format spec for numbers, one for all columns or one per column (``".3f"``).
+        Format spec for numbers, one for all columns or one per column (``".3f"``). A number that
+        rounds to zero in its format is printed without a sign (``0.000``, never ``-0.000``).
     align : str, optional
         One letter per column: ``l``, ``c`` or ``r`` (default: right).
     """

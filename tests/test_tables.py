@@ -1,0 +1,32 @@
+"""Markdown tables for people (present/tables.py): every expected string written by hand."""
+
+import numpy as np
+
+import mechanisms as mech
+
+
+def test_markdown_table_prints_numbers_in_their_formats():
+    table = mech.markdown_table(["φ, °", "s, m"], [[0, 0.38], [30, "—"]], [".0f", ".3f"])
+    assert table.text == "| φ, ° | s, m |\n|---:|---:|\n| 0 | 0.380 |\n| 30 | — |"
+
+
+def test_markdown_table_prints_a_negative_zero_without_its_sign():
+    # -0.0, -0.0001 and -4e-17 round to zero in ".3f": "0.000", as a person writes it;
+    # -0.0006 rounds to -0.001 and keeps its sign
+    rows = [[-0.0, -0.0001], [np.float64(-4e-17), -0.0006]]
+    table = mech.markdown_table(["a", "b"], rows, ".3f")
+    assert table.text == "| a | b |\n|---:|---:|\n| 0.000 | 0.000 |\n| 0.000 | -0.001 |"
+
+
+def test_negative_zero_keeps_the_format_s_sign_width_and_style():
+    # "+.2f" writes +0.00 for zero; "8.1f" pads to eight characters; ".0f" and "g" write 0;
+    # ".1e" writes 0.0e+00; "d" on an integer is untouched
+    rows = [[-0.001, -0.01, -0.2, -0.0, -0.0, -7]]
+    table = mech.markdown_table(list("abcdef"), rows, ["+.2f", "8.1f", ".0f", "g", ".1e", "d"])
+    assert table.text.splitlines()[2] == "| +0.00 |      0.0 | 0 | 0 | 0.0e+00 | -7 |"
+
+
+def test_a_tiny_negative_number_in_exponent_form_keeps_its_sign():
+    # -3e-20 in ".1e" is "-3.0e-20": not zero, so its sign stays; nan and -inf stay as they are
+    table = mech.markdown_table(["a", "b", "c"], [[-3e-20, float("nan"), float("-inf")]], ".1e")
+    assert table.text.splitlines()[2] == "| -3.0e-20 | nan | -inf |"
