@@ -28,24 +28,51 @@ from .linkages.linkage_file import FORMAT_SUMMARY, load_linkage
 from .core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError
 from .core.motion import Motion
 
-__all__ = ["main", "kinematic_table", "parse_angles", "parse_point", "MAX_POSITIONS"]
+__all__ = ["main", "kinematic_table", "parse_number", "parse_angles", "parse_point", "MAX_POSITIONS"]
 
 MAX_POSITIONS = 10_000_000
 """The most crank positions a table may have (a larger one would not fit in memory as text)."""
 
 
-def parse_angles(text: str) -> np.ndarray:
-    """``START:STOP:STEP`` in degrees (stop excluded) → crank angles in rad."""
+def parse_number(text: str) -> float:
+    """The one parser of the command line's numbers: a decimal or scientific number (``-1e3``, ``.5``,
+    ``-5e-2``) → float. ``nan`` and ``inf`` are read too (as floats are) and refused by the parameter's own
+    validation, which names the parameter; anything else raises :class:`ValueError`."""
+    if not isinstance(text, str) or not text.strip():
+        raise ValueError(f"not a number: {text!r}")
+    return float(text)
+
+
+def _cli_number(text: str) -> float:
+    """:func:`parse_number` for argparse: a value that is not a number is a usage error naming the option."""
     try:
-        start, stop, step = (float(v) for v in text.split(":"))
+        return parse_number(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number (e.g. 0.3, -1e3), got {text!r}") from None
+
+
+def parse_angles(text: str) -> np.ndarray:
+    """``START:STOP:STEP`` in degrees (stop excluded) → crank angles in rad.
+
+    A range shorter than one step gives START alone (one position); a step that leads away from
+    STOP, a step of 0, or more than :data:`MAX_POSITIONS` positions is an
+    :class:`~mechanisms.core.errors.InvalidParameterError` naming ``--angles``.
+    """
+    try:
+        start, stop, step = (parse_number(v) for v in text.split(":"))
     except ValueError:
         raise InvalidParameterError("--angles", text, "START:STOP:STEP in degrees, e.g. 0:360:30") from None
-    if not all(math.isfinite(v) for v in (start, stop, step)) or step == 0 or (stop - start) / step <= 0:
-        raise InvalidParameterError("--angles", text, "START:STOP:STEP with a step that reaches STOP")
-    # count the positions first: np.arange with a fractional step may include STOP by round-off
-    count = max(1, math.ceil((stop - start) / step - 1e-9))   # START itself at least
-    if count > MAX_POSITIONS:
+    if not all(math.isfinite(v) for v in (start, stop, step)):
+        raise InvalidParameterError("--angles", text, "START:STOP:STEP of finite numbers of degrees")
+    with np.errstate(over="ignore"):
+        count_exact = (stop - start) / step if step != 0 else math.nan   # may overflow to ±inf
+    if not count_exact > 0:
+        raise InvalidParameterError("--angles", text, "START:STOP:STEP with a step other than 0 that goes from "
+                                    "START towards STOP")
+    if count_exact > MAX_POSITIONS:
         raise InvalidParameterError("--angles", text, f"at most {MAX_POSITIONS} positions")
+    # count the positions first: np.arange with a fractional step may include STOP by round-off
+    count = max(1, math.ceil(count_exact - 1e-9))   # START itself at least
     return np.radians(start + step * np.arange(count))
 
 
@@ -54,7 +81,7 @@ def parse_point(text: str) -> tuple[str, str, float, float]:
     try:
         name, rest = text.split("=", 1)
         link, coords = rest.split(":", 1)
-        values = [float(v) for v in coords.split(",")]
+        values = [parse_number(v) for v in coords.split(",")]
         if not name or not link or len(values) not in (1, 2) or not all(map(math.isfinite, values)):
             raise ValueError
     except ValueError:
@@ -66,11 +93,20 @@ def _pair(text: str) -> tuple[float, float]:
     parts = text.split(",")
     if len(parts) != 2:
         raise argparse.ArgumentTypeError(f"expected two numbers A,B, got {text!r}")
-    return float(parts[0]), float(parts[1])
+    try:
+        return parse_number(parts[0]), parse_number(parts[1])
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected two numbers A,B, got {text!r}") from None
 
 
-_KINDS: dict[str, Callable[[str], Any]] = {"length": float, "number": float, "angle": float, "pair": _pair,
-                                          "branch": int}
+def _branch(text: str) -> int:
+    if text.strip() not in ("1", "+1", "-1"):
+        raise argparse.ArgumentTypeError(f"expected +1 or -1, got {text!r}")
+    return int(text)
+
+
+_KINDS: dict[str, Callable[[str], Any]] = {"length": _cli_number, "number": _cli_number, "angle": _cli_number,
+                                          "pair": _pair, "branch": _branch}
 
 
 def _class_value(parameter, value):
@@ -326,8 +362,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _add_table_options(sub: argparse.ArgumentParser) -> None:
     """The options every ``table`` takes: the crank's motion, the positions, extra points, the format."""
-    sub.add_argument("--omega", type=float, required=True, help="crank angular velocity ω1, 1/s")
-    sub.add_argument("--alpha", type=float, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
+    sub.add_argument("--omega", type=_cli_number, required=True, help="crank angular velocity ω1, 1/s")
+    sub.add_argument("--alpha", type=_cli_number, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
     where = sub.add_mutually_exclusive_group()
     where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
     where.add_argument("--positions", type=int, default=None, help="N positions evenly over a turn (default 12)")
@@ -526,7 +562,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     (unknown student ids, repeated rows …), and 2 when a file could not be graded at all.
     """
     parser = build_parser()
-    args = parser.parse_args(_file_table(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv))))
+    try:     # a usage error (argparse has printed it) or --help: an exit status, not an exception
+        args = parser.parse_args(_file_table(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv))))
+    except SystemExit as stop:
+        return stop.code if isinstance(stop.code, int) else 2
     if args.command is None:
         parser.print_help()
         return 0

@@ -19,7 +19,7 @@ Linkages are described in Python (this module) or in a TOML file
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -69,13 +69,16 @@ class _Link:
 
 def _apex(base: float, first: float, second: float, side: int) -> complex:
     """The apex of a triangle on a base of length ``base`` along +x: at ``first`` from the origin and
-    ``second`` from the base's end, to the left (side +1) or right (−1); m."""
+    ``second`` from the base's end, to the left (side +1) or right (−1); m. Computed on the lengths divided
+    by a power of two near the largest (exact, and no square overflows or underflows), then scaled back."""
+    size = math.ldexp(1.0, math.frexp(max(base, first, second))[1])
+    base, first, second = base / size, first / size, second / size
     total, difference = first + second, abs(first - second)
     product = (total - base) * (total + base) * (base - difference) * (base + difference)
     if product < -1e-12 * (total * base) ** 2:
-        raise StructureError(f"no triangle has sides {base:g}, {first:g} and {second:g} m")
+        raise StructureError(f"no triangle has sides {base * size:g}, {first * size:g} and {second * size:g} m")
     along = 0.5 * (base + (first - second) * (first + second) / base)
-    return complex(along, side * math.sqrt(max(product, 0.0)) / (2.0 * base))
+    return complex(along, side * math.sqrt(max(product, 0.0)) / (2.0 * base)) * size
 
 
 def _given(length: float | None) -> float:
@@ -139,6 +142,11 @@ class Linkage(Mechanism):
                  masses: Mapping[str, Mapping[str, float]] | None = None, source: str | None = None):
         self.name = str(name)
         self.source = source
+        if not isinstance(frame, Mapping):
+            raise StructureError(f"{self.name}: the frame must map joint names to points [x, y] in m: got {frame!r}")
+        if isinstance(groups, (str, bytes)) or not isinstance(groups, Sequence):
+            raise StructureError(f"{self.name}: the groups must be a sequence (the crank and Assur groups): "
+                                 f"got {groups!r}")
         self.frame = {str(k): self._position(f"frame.{k}", v) for k, v in dict(frame).items()}
         if not self.frame:
             raise StructureError(f"{self.name}: the frame has no joints: give the crank's pivot at least")
@@ -409,6 +417,11 @@ class Linkage(Mechanism):
 
     def parameters(self) -> dict[str, object]:
         return {"file": self.source} if self.source else {"name": self.name}
+
+    def _rescaled(self, factor: float) -> "Linkage":
+        """The same linkage with every length, position and guess multiplied by ``factor`` (a power of four)."""
+        return Linkage({name: point * factor for name, point in self.frame.items()},
+                       [_scaled_group(group, factor) for group in self._groups], self.name, self.masses, self.source)
 
     # --- solving -------------------------------------------------------------------------------
 
@@ -798,6 +811,33 @@ class _State:
 
     def __post_init__(self):
         self.singular = np.zeros(np.shape(self.phi), dtype=bool)
+
+
+def _times(value: Any, factor: float) -> Any:
+    return None if value is None else value * factor
+
+
+def _scaled_line(line: Line, factor: float) -> Line:
+    return replace(line, point=line.point * factor)
+
+
+_LENGTH_FIELDS: dict[type, tuple[str, ...]] = {Crank: ("length",), RRR: ("first_length", "second_length"),
+                                               RRP: ("length", "through"), RPR: ("length",), LinkPoint: ("along", "left")}
+"""The fields of each kind of group that are lengths or points (m), scaled with the linkage."""
+
+_LINE_FIELDS: dict[type, tuple[str, ...]] = {PRP: ("first_guide", "second_guide"), RPP: ("guide",)}
+
+
+def _scaled_group(group: Group, factor: float) -> Group:
+    """A group with its lengths, points and guesses multiplied by ``factor`` (angles and names kept)."""
+    changes: dict[str, Any] = {name: _times(getattr(group, name), factor) for name in _LENGTH_FIELDS.get(type(group), ())}
+    changes |= {name: _scaled_line(getattr(group, name), factor) for name in _LINE_FIELDS.get(type(group), ())}
+    if isinstance(group, Triad):
+        changes = {"bars": tuple((a, b, length * factor) for a, b, length in group.bars),
+                   "guess": tuple(complex(g) * factor for g in group.guess)}
+    if isinstance(group, LinkPoint) and group.distances is not None:
+        changes["distances"] = (group.distances[0] * factor, group.distances[1] * factor)
+    return replace(group, **changes)
 
 
 def _guides(group: Group) -> tuple[Line, ...]:

@@ -311,7 +311,7 @@ def _group(kind: str, table: Mapping[str, Any], where: _Where,
     if kind == "triad":
         return _triad(table, where)
     kind_name = table.get("type")
-    if kind_name not in _DYAD_KEYS:
+    if not isinstance(kind_name, str) or kind_name not in _DYAD_KEYS:
         raise where.error(f"must be one of {', '.join(_DYAD_KEYS)}: got {kind_name!r}", "type")
     where.keys(table, *_DYAD_KEYS[kind_name])
     if kind_name == "RRR":

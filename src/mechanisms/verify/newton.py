@@ -149,47 +149,94 @@ def rates(constraints: Constraints, q: np.ndarray, phi: np.ndarray, omega: Array
 
 
 def _newton(constraints, q, phi, tol, max_iter):
-    """Vectorized Newton iterations from the guess q (k, n); returns q and the iterations used."""
+    """Vectorized Newton iterations from the guess q (k, n); returns q and the iterations used.
+
+    A position has converged when its step is below ``tol·(1 + |q|)``, or when its step has stopped
+    shrinking once it is below ``√tol·(1 + |q|)``: near a singular position (1e-9 rad from a limit of
+    assembly) round-off keeps the steps at about ε/√δ, above ``tol``, and the iterate is then as good as
+    double precision makes it.
+    """
+    done = np.zeros(phi.shape, dtype=bool)
+    previous = np.full(phi.shape, np.inf)
+    size = np.zeros(phi.shape)
     for iteration in range(1, max_iter + 1):
         residual, jac = _jacobian(constraints, q, phi)
         step = linear_solve(jac, residual)
+        step[done] = 0.0
         q = q - step.T
         size = np.max(np.abs(step), axis=-1)
         bad = ~np.isfinite(size)
         if bad.any():
             raise AssemblyError("Newton's method met a singular constraint Jacobian (no assembly or a "
                                 "dead centre)", phi[bad])
-        if np.all(size <= tol * (1.0 + np.max(np.abs(q), axis=0))):
+        bound = 1.0 + np.max(np.abs(q), axis=0)
+        stalled = (size >= 0.9 * previous) & (size <= np.sqrt(tol) * bound)
+        done |= (size <= tol * bound) | stalled
+        previous = np.where(done, previous, size)
+        if done.all():
             return q, iteration
     raise AssemblyError(f"Newton's method did not converge in {max_iter} iterations "
-                        "(no assembly, or the guess is far off)", phi[size > tol * (1.0 + np.max(np.abs(q), axis=0))])
+                        "(no assembly, or the guess is far off)", phi[~done])
+
+
+_LARGEST_CHANGE = 0.5
+"""The largest change of a coordinate (rad or m) in one continuation step: far below the 2π by which an
+angle could jump without Newton's method noticing."""
+
+_SMALLEST_STEP = 2.0**-40
+"""The shortest continuation step, as a fraction of ``max_step``, before the continuation gives up."""
+
+
+def _tangent(constraints, q: np.ndarray, angle: float) -> np.ndarray:
+    """dq/dφ at one position (k,), from ``Φ_q q' = −Φ_φ``; zeros where the Jacobian is singular."""
+    slope, _ = rates(constraints, q[:, None], np.array([angle]), 1.0, 0.0, 1)
+    assert slope is not None
+    return slope[:, 0] if np.all(np.isfinite(slope)) else np.zeros_like(q)
 
 
 def _continue(constraints, guess, phi, tol, max_iter, max_step):
-    """Continuation from the first crank angle on, sub-stepping so no step exceeds ``max_step``.
+    """Continuation from the first crank angle on, with a predictor and step control.
 
-    Each solve starts from the linear extrapolation of the last two solutions, so the
-    solution follows the branch of the guess even across coarse steps between the positions.
+    Each step predicts the solution along the branch's tangent (at the start, from the differentiated
+    constraints; then the secant of the last step), corrects it by Newton's method, and accepts it
+    only if the correction is small against the step (at most a tenth of ``h·(1 + |q'|)``) and no
+    coordinate changed by more than 0.5 (rad or m); otherwise it halves the step. Near a change point, where another branch crosses this one at an angle, the
+    other branch is about ``h`` away and the predictor's error is of order ``h²``, so a short enough step
+    stays on the branch it started on; near a limit of assembly, where the branch turns steeply, the
+    steps shorten likewise. Steps grow back (doubling) up to ``max_step``.
     """
     q = np.empty((guess.size, phi.size))
-    path: list[tuple[float, np.ndarray]] = []   # the latest two (angle, solution) on the path
-    iterations = 0
-    for i in range(phi.size):
-        if i == 0:
-            targets = phi[:1]
-        else:
-            steps = max(1, int(np.ceil(abs(phi[i] - path[-1][0]) / max_step)))
-            targets = np.linspace(path[-1][0], phi[i], steps + 1)[1:]
-        for target in targets:
-            if len(path) == 2 and path[1][0] != path[0][0]:
-                (a0, q0), (a1, q1) = path
-                start = q1 + (q1 - q0) * (target - a1) / (a1 - a0)   # linear extrapolation
-            else:
-                start = path[-1][1] if path else guess
-            qi, used = _newton(constraints, start[:, None], np.array([target]), tol, max_iter)
-            path = path[-1:] + [(float(target), qi[:, 0])]
+    angle = float(phi[0])
+    current, iterations = _newton(constraints, guess[:, None], phi[:1], tol, max_iter)
+    current = current[:, 0]
+    slope = _tangent(constraints, current, angle)
+    q[:, 0] = current
+    step = max_step
+    for i in range(1, phi.size):
+        target = float(phi[i])
+        while angle != target:
+            h = float(np.clip(target - angle, -step, step))
+            here = target if abs(target - angle) <= step else angle + h
+            h = here - angle
+            predicted = current + slope * h
+            try:
+                solved, used = _newton(constraints, predicted[:, None], np.array([here]), tol, max_iter)
+                corrected = solved[:, 0]
+                accepted = bool(np.max(np.abs(corrected - predicted)) <= 0.1 * abs(h) * (1.0 + np.max(np.abs(slope)))
+                                and np.max(np.abs(corrected - current)) <= _LARGEST_CHANGE)
+            except AssemblyError:
+                accepted, used, corrected = False, 0, predicted
+            if not accepted and step > _SMALLEST_STEP * max_step:
+                step *= 0.5
+                continue
+            if not accepted and np.any(corrected is predicted):
+                raise AssemblyError("the continuation cannot follow the branch (no assembly, or a singular "
+                                    "position where the branch ends)", np.array([here]))
+            slope = (corrected - current) / h
+            angle, current = here, corrected
             iterations = max(iterations, used)
-        q[:, i] = path[-1][1]
+            step = min(max_step, 2.0 * step)
+        q[:, i] = current
     return q, iterations
 
 
