@@ -19,3 +19,4 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 settings.register_profile("default", derandomize=True, deadline=None, print_blob=True)
 settings.register_profile("explore", deadline=None, print_blob=True)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
+

@@ -7,15 +7,13 @@ random ids, a memory address) commits new bytes that every clone downloads forev
   known non-deterministic pattern: jshtml animations (``anim_`` + random hex), a PNG text chunk or
   ``tIME`` chunk with a date, an SVG ``<dc:date>``, a memory address ``at 0x…``, a timestamp, a random
   UUID or temporary path, widget model ids, execution-timing metadata of a cell.
-* ``test_reexecution_changes_no_output`` (slow: executes every notebook once, about 70 s in all,
-  parametrized by notebook): each notebook is executed into memory as ``tools/run_notebooks.py``
-  executes it (nbclient, the ``python3`` kernel, in the notebook's folder, no timing metadata), and
-  every output of every code cell (stream text, ``text/plain``, ``text/html``, ``text/markdown``,
-  ``image/png`` … and their metadata) and its execution count is compared with the committed file,
-  exactly. Executing once and comparing with what the previous execution stored is the same test as
-  "execute twice in a row": the committed outputs are the first run (``make notebooks`` stores them),
-  this is the second. The message names the notebook, the cell (number and first line), the output
-  and what changed in it.
+* the comparison on re-execution, without a second run: ``tests/conftest.py`` hooks nbval's own
+  execution of every cell (``make test`` re-executes every notebook under nbval) and compares every
+  output it produced (stream text, ``text/plain``, ``text/html``, ``text/markdown``, ``image/png`` …
+  and their metadata) with the committed one, exactly (:func:`nbval_cell_changes`). Comparing with
+  what the previous execution stored is the same test as "execute twice in a row": the committed
+  outputs are the first run (``make notebooks`` stores them), nbval's is the second. The message
+  names the notebook, the cell (number and first line), the output and what changed in it.
 
 Cells tagged ``nbval-ignore-output`` (the measured times of chapter 9) are not compared: they change
 by nature. They must hold short text only (no image, no HTML, at most 2 kB), so what they add to the
@@ -186,17 +184,6 @@ def test_no_output_holds_what_changes_from_run_to_run():
 
 # --- executing once more --------------------------------------------------------------------------------------
 
-def execute(path: pathlib.Path):
-    """The notebook executed in memory as tools/run_notebooks.py executes it."""
-    from nbclient import NotebookClient
-
-    nb = nbformat.read(path, as_version=4)
-    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
-    NotebookClient(nb, kernel_name="python3", timeout=600, record_timing=False,
-                   resources={"metadata": {"path": str(path.parent)}}).execute()
-    return nb
-
-
 def difference(old, new) -> str:
     """Where two values of an output differ, briefly."""
     if isinstance(old, str) and isinstance(new, str):
@@ -285,13 +272,3 @@ def nbval_cell_changes(item) -> list[str]:
     name = relative(name) if ROOT in name.parents else name.name
     return [p.replace(", cell 0 ", f", cell {item.cell_num} ", 1)
             for p in changed_outputs(name, [stored], [now])]
-
-
-@pytest.mark.parametrize("path", notebooks(), ids=relative)
-def test_reexecution_changes_no_output(path):
-    stored = nbformat.read(path, as_version=4)
-    executed = execute(path)
-    assert len(stored.cells) == len(executed.cells)
-    problems = changed_outputs(relative(path), stored.cells, executed.cells)
-    assert problems == [], (f"re-executing {relative(path)} changes its stored outputs (run `make notebooks "
-                            f"NB={relative(path)}` twice and make the outputs deterministic):\n" + "\n".join(problems))
