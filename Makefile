@@ -1,4 +1,5 @@
-# Two commands for a newcomer: `make book` builds the static site, `make test` runs every test.
+# Two commands for a newcomer: `make book` builds the static site, `make test` runs every test
+# (after building both editions and their PDFs: `make pdf`).
 # Each creates .venv if it is missing and installs what it needs (Python 3.11 and pip suffice).
 
 PYTHON ?= python3
@@ -8,7 +9,7 @@ STAMP  := $(VENV)/.installed
 SITE   := _build/html
 STUDENT := _build/student
 
-.PHONY: book book-student test notebooks sources typecheck clean
+.PHONY: book book-student pdf test notebooks sources typecheck clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -36,7 +37,12 @@ book-student: $(STAMP) _mathjax/mathjax/es5/tex-chtml.js
 	$(BIN)/jupyter-book build . --all --builder html --warningiserror --keep-going \
 		--config $(STUDENT)/_config.yml --path-output $(STUDENT)
 
-test: book book-student
+# The printable book: one PDF per edition (_build/pdf/mechanisms-book.pdf and mechanisms-book-student.pdf),
+# the built sites printed by Chromium through Playwright in the order of _toc.yml (tools/make_pdf.py).
+pdf: book book-student
+	$(BIN)/python tools/make_pdf.py
+
+test: book book-student pdf
 	$(BIN)/mypy
 	$(BIN)/python -m pytest
 
