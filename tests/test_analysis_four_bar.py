@@ -120,3 +120,26 @@ def test_grashof_class_rejects_bad_lengths(bad):
     from mechanisms.core.errors import InvalidParameterError
     with pytest.raises(InvalidParameterError, match="crank must be a finite length"):
         grashof_class(bad, 1.0, 1.0, 1.0)
+
+
+def test_half_angle_terms_by_hand():
+    # P = a − L1 cos φ, Q = b − L1 sin φ, F = (P² + Q² + L2² − L3²)/(2 L2), by hand for the
+    # linkage crank 1, coupler 3.5, rocker 3, frame (−2, 3):
+    # φ = 0:   P = −3, Q = 3,  F = (9 + 9 + 12.25 − 9)/7 = 21.25/7
+    # φ = 90°: P = −2, Q = 2,  F = (4 + 4 + 12.25 − 9)/7 = 11.25/7
+    from mechanisms.analysis.four_bar import half_angle_terms
+    p, q, f = half_angle_terms(np.radians([0.0, 90.0]), 1.0, 3.5, 3.0, (-2.0, 3.0))
+    assert p.shape == q.shape == f.shape == (2,)
+    np.testing.assert_allclose(p, [-3.0, -2.0], atol=1e-15)
+    np.testing.assert_allclose(q, [3.0, 2.0], atol=1e-15)
+    np.testing.assert_allclose(f, [21.25 / 7, 11.25 / 7], rtol=1e-15)
+
+
+def test_half_angle_terms_satisfy_the_constraint():
+    # the coupler angle of the class (solved by the hinge, not by P, Q, F) satisfies P cos ψ + Q sin ψ = F
+    from mechanisms.analysis.four_bar import half_angle_terms
+    m = FourBar(crank=1.0, coupler=3.5, rocker=3.0, frame=(4.0, 0.0))
+    phi = np.radians(np.arange(0.0, 360.0, 15.0))
+    psi = m.solve(phi, order=0).angle("coupler").value
+    p, q, f = half_angle_terms(phi, 1.0, 3.5, 3.0, (4.0, 0.0))
+    np.testing.assert_allclose(p * np.cos(psi) + q * np.sin(psi), f, atol=1e-13)

@@ -13,13 +13,14 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .assignments import Quantity, Task, crank_speed, register_assignment, round_mm
 from ..core.angles import wrap_angle
 from ..linkages.base import Solution
 from ..core.errors import AssemblyError
 from ..core.validate import require_length
-from ..linkages.four_bar import FourBar
+from ..linkages.four_bar import FourBar, _pqf
 from ..core.motion import PointMotion
 
 __all__ = [
@@ -30,6 +31,7 @@ __all__ = [
     "limit_positions",
     "transmission_angle",
     "transmission_extremes",
+    "half_angle_terms",
     "coupler_curve",
     "StraightPart",
     "best_line",
@@ -192,6 +194,35 @@ def transmission_extremes(mechanism: FourBar) -> tuple[float, float]:
                                 math.sqrt((outer - reach) * (outer + reach)))
 
     return mu(abs(d - l1)), mu(d + l1)
+
+
+def half_angle_terms(phi: ArrayLike, crank: float, coupler: float, rocker: float,
+                     frame: tuple[float, float]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The lecture's auxiliary quantities P, Q, F of the four-bar's half-angle solution.
+
+    Parameters
+    ----------
+    phi : array_like
+        Crank angles φ (rad).
+    crank, coupler, rocker : float
+        L1, L2, L3 (m).
+    frame : tuple of float
+        The rocker pivot C = (a, b) (m).
+
+    Returns
+    -------
+    P, Q, F : ndarray
+        Arrays of the shape of ``phi`` (m): ``P = a − L1 cos φ``, ``Q = b − L1 sin φ``,
+        ``F = (P² + Q² + L2² − L3²)/(2 L2)``.
+
+    Notes
+    -----
+    Chapters 2 and 4 (Alyushin, 2008): the coupler angle ψ solves ``P cos ψ + Q sin ψ = F``; the
+    half-angle formula ``ψ = 2 arctan[(Q ± √(Q² + P² − F²))/(P + F)]``
+    (:func:`mechanisms.linkages.four_bar.half_angle_coupler_angle`) divides by ``P + F``, which
+    chapter 9 finds the root of.
+    """
+    return _pqf(phi, crank, coupler, rocker, frame)
 
 
 def coupler_curve(mechanism: FourBar, along: float, left: float = 0.0, positions: int = 361) -> PointMotion:
