@@ -15,7 +15,7 @@ import mechanisms as mech
 from mechanisms.linkages.chunks import BLOCK, solve_in_chunks
 from mechanisms.blocks.crank import crank_angle
 from mechanisms.core.motion import fixed_point
-from mechanisms.core.errors import AssemblyError, DeadCentreWarning
+from mechanisms.core.errors import AssemblyError, SingularPositionWarning
 
 N = 5 * BLOCK + 123          # several blocks and a short last one
 
@@ -77,7 +77,7 @@ def test_assembly_error_names_every_failing_angle_as_before():
 def test_dead_centres_in_any_block_are_flagged():
     m = mech.FourBar(1.0, 4.0, 1.0, (4.0, 0.0))       # parallelogram: change points at 0 and π
     phi = np.linspace(-np.pi, 3.0 * np.pi, 4 * N + 1)   # contains −π, 0, π, 2π, 3π exactly
-    with pytest.warns(DeadCentreWarning):
+    with pytest.warns(SingularPositionWarning):
         sol = m.solve(phi, omega=1.0)
     expected = np.isclose(np.sin(phi), 0.0, atol=1e-12)
     np.testing.assert_array_equal(sol.singular, expected)

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.analysis.structure import mobility, structure_of
-from mechanisms.core.errors import AssemblyError, DeadCentreWarning, StructureError
+from mechanisms.core.errors import AssemblyError, SingularPositionWarning, StructureError
 from mechanisms.linkages.composed import Linkage
 from mechanisms.linkages.groups import PRP, RPP, RPR, RRP, RRR, Crank, Line, LinkPoint, Triad
 from mechanisms.linkages.linkage_file import example_files, linkage_from_dict, load_linkage
@@ -88,7 +88,7 @@ def composed_pairs():
 def test_every_book_mechanism_composed_agrees_with_its_class(pair):
     cls_mechanism, composed, (links, points, sliders) = pair
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         phi = PHI + 0.013      # off the exact dead centres, where both are singular
         a, b = cls_mechanism.solve(phi, 2.5, -0.7), composed.solve(phi, 2.5, -0.7)
     for name in links:
@@ -377,9 +377,9 @@ def test_random_linkage_files_agree_with_the_generic_solver(case):
         linkage = linkage_from_dict(data, "random.toml")
         phi = np.linspace(-0.05, 0.05, 5)
         with warnings.catch_warnings():
-            warnings.simplefilter("error", DeadCentreWarning)
+            warnings.simplefilter("error", SingularPositionWarning)
             solution = linkage.solve(phi, 1.3, 0.4)
-    except (AssemblyError, DeadCentreWarning):
+    except (AssemblyError, SingularPositionWarning):
         assume(False)
         return
     # a well-conditioned pose: the generic solver's Jacobian is far from singular

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms import verify
-from mechanisms.core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError
+from mechanisms.core.errors import AssemblyError, SingularPositionWarning, InvalidParameterError
 from strategies import branches, crank_slider_geometries, finite
 
 PHI = np.radians(np.arange(0.0, 360.0, 10.0))
@@ -175,7 +175,7 @@ def test_rod_perpendicular_to_guide_is_marked_and_warned():
     # is 3 m = L above the guide, the rod stands vertically, s_t = 0/0 there
     m = mech.CrankSlider(2.0, 3.0, -1.0)
     phi = np.radians([0.0, 90.0, 180.0])
-    with pytest.warns(DeadCentreWarning, match="90°"):
+    with pytest.warns(SingularPositionWarning, match="90°"):
         sol = m.solve(phi, 1.0)
     np.testing.assert_array_equal(sol.singular, [False, True, False])
     np.testing.assert_allclose(sol.point("B").value[1], -1j, atol=1e-15)  # B right below A

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 
-from mechanisms import AssemblyError, DeadCentreWarning, FourBar, InvalidParameterError
+from mechanisms import AssemblyError, SingularPositionWarning, FourBar, InvalidParameterError
 from mechanisms.linkages.four_bar import (assembly_intervals, cramer_rates, half_angle_coupler_angle,
                                  stable_coupler_angle)
 from mechanisms.verify import constraint_residual, derivative_errors, distance_deviation, solve_constraints
@@ -66,7 +66,10 @@ def test_half_angle_and_cramer_formulas_of_the_lecture(geometry):
     assume(not m.change_points())
     phi = inner_angles(m)
     assume(well_conditioned(m, phi))
-    sol = m.solve(phi, omega=1.5, alpha=0.4)
+    with warnings.catch_warnings():     # a geometry within round-off of a change point is flagged singular
+        warnings.simplefilter("ignore", SingularPositionWarning)
+        sol = m.solve(phi, omega=1.5, alpha=0.4)
+    assume(not sol.singular.any())
     psi, xi = sol.angle("coupler").value, sol.angle("rocker").value
     # P + F away from zero: the half-angle form is accurate there
     p = frame[0] - crank * np.cos(phi)
@@ -139,7 +142,7 @@ def test_parallelogram_keeps_its_mode_through_the_change_points(step_deg):
     m = FourBar(1.0, 4.0, 1.0, (4.0, 0.0), branch=1)
     phi = np.radians(np.arange(-720.0, 720.0 + step_deg / 2, step_deg))
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         sol = m.solve(phi, omega=1.0)
     # expected by hand: B = C + L1·exp(iφ), the rocker parallel to the crank, coupler along +x
     assert np.max(np.abs(sol.point("B").value - (4.0 + np.exp(1j * phi)))) < 1e-6
@@ -167,7 +170,7 @@ def test_deltoid_does_not_fold_at_its_change_points():
     m = FourBar(1.0, 1.0, 3.0, (3.0, 0.0), branch=1)
     phi = np.radians(np.arange(-360.0, 360.0, 5.0))
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         sol = m.solve(phi, order=0)
     a = sol.point("A").value
     # expected by hand: the kite mode, B = reflection of O in the line A C

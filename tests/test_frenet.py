@@ -263,7 +263,7 @@ def test_printed_lambda_gamma_21_is_right():
     for r, b, d in ((2.0, 6.5, 5.0), (2.0, 5.0, 5.0), (2.0, 6.5, 11.0)):
         m = mech.LambdaMechanism(r, b, d)
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore", mech.DeadCentreWarning)
+            warnings.simplefilter("ignore", mech.SingularPositionWarning)
             theta = m.solve(turn, order=0).angle("coupler").angle
         gamma = frenet.lambda_mechanism_gamma(turn, r, b, d)
         assert np.allclose(np.exp(1j * gamma), np.exp(1j * (np.pi - theta)), atol=1e-10)

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 import mechanisms as mech
 from mechanisms.bench import jacobian_condition, reference
-from mechanisms.core.errors import AssemblyError, DeadCentreWarning
+from mechanisms.core.errors import AssemblyError, SingularPositionWarning
 from mechanisms.linkages.four_bar import _pqf, half_angle_coupler_angle, stable_coupler_angle
 
 EPS = np.finfo(float).eps
@@ -52,7 +52,7 @@ def limit_angle():
 def test_dead_centre_approach_is_finite_and_as_accurate_as_its_conditioning(delta):
     m = mech.FourBar(**NON_GRASHOF)
     phi = np.array([limit_angle() - delta, -limit_angle() + delta])
-    sol = m.solve(phi, omega=1.0)          # no DeadCentreWarning: pytest turns it into an error
+    sol = m.solve(phi, omega=1.0)          # no SingularPositionWarning: pytest turns it into an error
     assert not sol.singular.any()
     q, q_t, q_tt = coordinates(m, sol)
     ref = reference(m, phi)
@@ -66,7 +66,7 @@ def test_dead_centre_approach_is_finite_and_as_accurate_as_its_conditioning(delt
 
 def test_dead_centre_is_flagged_and_beyond_it_is_an_assembly_error():
     m = mech.FourBar(**NON_GRASHOF)
-    with pytest.warns(DeadCentreWarning):
+    with pytest.warns(SingularPositionWarning):
         sol = m.solve([limit_angle()], omega=1.0)
     assert sol.singular[0]
     assert np.isfinite(sol.point("B").value[0])            # the position is still finite
@@ -117,7 +117,7 @@ def test_parallelogram_stays_a_parallelogram_through_the_change_point(delta):
 
 def test_parallelogram_change_point_itself_is_flagged():
     m = parallelogram()
-    with pytest.warns(DeadCentreWarning):
+    with pytest.warns(SingularPositionWarning):
         sol = m.solve([0.0, math.pi], omega=1.0)
     assert sol.singular.all()
     assert np.all(np.isfinite(sol.point("B").value))
@@ -178,7 +178,7 @@ def test_crank_slider_with_rod_equal_to_crank_plus_offset():
     m = mech.CrankSlider(crank=1.0, rod=1.5, offset=0.5)     # full revolution, just: L2 = L1 + e
     assert m.full_revolution
     # at φ = −90° the pin is L1 + e = L2 below the guide: the rod is perpendicular to it
-    with pytest.warns(DeadCentreWarning):
+    with pytest.warns(SingularPositionWarning):
         sol = m.solve([-math.pi / 2], omega=1.0)
     assert sol.singular[0]
     assert sol.slider("B").value[0] == pytest.approx(0.0, abs=1e-15)      # B right above O (by hand)
@@ -205,7 +205,7 @@ def test_slotted_lever_block_through_the_pivot_is_finite():
     m = mech.SlottedLever(crank=1.0, pivot=(1.0, 0.0))
     assert m.kind == "through pivot"
     phi = np.array([-1e-9, 0.0, 1e-9, 1.0])
-    sol = m.solve(phi, omega=2.0)                  # no DeadCentreWarning
+    sol = m.solve(phi, omega=2.0)                  # no SingularPositionWarning
     assert not sol.singular.any()
     # inscribed-angle theorem: the lever turns at half the crank's speed
     assert np.allclose(sol.angle("lever").omega, 1.0, rtol=0, atol=1e-15)
@@ -296,7 +296,7 @@ def test_crank_slider_at_the_ends_of_its_own_ranges(crank, rod, offset):
         return
     ends = np.array([end for interval in m.assembly_ranges for end in interval])
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", mech.DeadCentreWarning)
+        warnings.simplefilter("ignore", mech.SingularPositionWarning)
         sol = m.solve(ends, 1.0)
     v = sol.slider("B").velocity
     assert np.all(sol.singular | (np.abs(v) < 1e3 * (crank + rod)))
@@ -318,7 +318,7 @@ def test_four_bar_at_the_ends_of_its_own_intervals(lengths, frame):
     if ends.size == 0:
         return
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", mech.DeadCentreWarning)
+        warnings.simplefilter("ignore", mech.SingularPositionWarning)
         sol = m.solve(ends, 1.0)
     w = sol.angle("rocker").omega
     assert np.all(sol.singular | (np.abs(w) < 1e4))

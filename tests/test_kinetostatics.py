@@ -157,7 +157,7 @@ def test_weight_of_a_balanced_crank_goes_to_its_pivot():
 def test_singular_positions_give_nan_and_bad_input_raises():
     # a change-point four-bar (parallelogram) has singular positions at φ = 0 and π
     m = mech.FourBar(0.1, 0.4, 0.1, (0.4, 0.0))
-    with pytest.warns(mech.DeadCentreWarning):
+    with pytest.warns(mech.SingularPositionWarning):
         sol = m.solve(np.array([0.0, 1.0]), omega=1.0)
     result = kinetostatics.joint_forces(m, sol, {"crank": energy.LinkMass(1.0)})
     assert np.isnan(result.driving_torque[0]) and np.isfinite(result.driving_torque[1])

@@ -5,7 +5,7 @@ import warnings
 import numpy as np
 import pytest
 
-from mechanisms import AssemblyError, DeadCentreWarning, InvalidParameterError, LambdaMechanism
+from mechanisms import AssemblyError, SingularPositionWarning, InvalidParameterError, LambdaMechanism
 from mechanisms.analysis.four_bar import straight_part
 from mechanisms.verify import constraint_residual, distance_deviation, generic_errors
 
@@ -56,7 +56,7 @@ def test_straight_part_of_b():
 def test_drop_shaped_curve_at_the_change_point():
     # d = 11 = 2b − r: a change point at φ = 0 (A, C, D in line)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         drop = LambdaMechanism(2.0, 6.5, 11.0, keep_side=True).solve(np.radians(np.arange(-180.0, 181.0, 1.0)))
         smooth = LambdaMechanism(2.0, 6.5, 11.0).solve(np.radians(np.arange(-180.0, 181.0, 1.0)))
     b = drop.point("B").value

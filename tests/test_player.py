@@ -144,7 +144,7 @@ def printed(value: float, digits: int) -> str:
 
 def solved(mechanism, phi, order=1):
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", mech.DeadCentreWarning)
+        warnings.simplefilter("ignore", mech.SingularPositionWarning)
         return mechanism.solve(np.atleast_1d(phi), order=order)
 
 

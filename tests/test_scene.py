@@ -46,7 +46,7 @@ def frame_angles(data) -> np.ndarray:
 
 def solved(mechanism, phi, order=0, omega=1.0):
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", mech.DeadCentreWarning)
+        warnings.simplefilter("ignore", mech.SingularPositionWarning)
         return mechanism.solve(phi, omega=omega, order=order)
 
 

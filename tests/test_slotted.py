@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mechanisms as mech
-from mechanisms.core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError
+from mechanisms.core.errors import AssemblyError, SingularPositionWarning, InvalidParameterError
 from mechanisms.verify import constraint_residual, distance_deviation, generic_errors
 from strategies import branches, finite, slotted_lever_geometries
 
@@ -141,7 +141,7 @@ def test_pin_on_the_pivot_through_the_general_block_warns():
     m.kind = "oscillating"  # force the general block with a pin that reaches the pivot
     m.pivot_point = 0.1 + 0j
     m.pivot = (0.1, 0.0)
-    with pytest.warns(DeadCentreWarning, match="0°"):
+    with pytest.warns(SingularPositionWarning, match="0°"):
         solution = m.solve(np.array([0.0, 0.5]), 3.0)
     assert solution.singular.tolist() == [True, False]
 

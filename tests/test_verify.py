@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechanisms import verify
-from mechanisms.core.errors import AssemblyError, DeadCentreWarning
+from mechanisms.core.errors import AssemblyError, SingularPositionWarning
 from mechanisms.core.motion import Motion
 from mechanisms_for_tests import ScotchYoke
 
@@ -136,7 +136,7 @@ class StuckYoke(ScotchYoke):
 
 
 def test_dead_centre_warns_and_names_the_angle():
-    with pytest.warns(DeadCentreWarning, match="0°"):
+    with pytest.warns(SingularPositionWarning, match="0°"):
         sol = StuckYoke(0.1).solve(PHI, 1.0)
     assert sol.singular.sum() == 1
     StuckYoke(0.1).solve(PHI, 1.0, order=0)  # positions only: nothing unbounded, no warning

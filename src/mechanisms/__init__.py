@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:   # what the names are, for type checkers and editors; nothing is imported at run time
     from . import core, plot, present, verify  # noqa: F401
     from .core import motion  # noqa: F401
-    from .core.errors import (AssemblyError, DeadCentreWarning, InvalidParameterError,  # noqa: F401
+    from .core.errors import (AssemblyError, SingularPositionWarning, InvalidParameterError,  # noqa: F401
                               MechanismError, MissingDerivativeError, StructureError)
     from .core.links import LINK_TYPES, LinkType, harmonic, link_type  # noqa: F401
     from .core.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point,  # noqa: F401
@@ -42,7 +42,7 @@ _NAMES: dict[str, tuple[str, ...]] = {
     "mechanisms.core.motion": ("Motion", "AngleMotion", "PointMotion", "fixed_point", "plane_motion",
                                "point_on_link", "lagrange_point", "translated_point", "polar"),
     "mechanisms.core.links": ("LINK_TYPES", "LinkType", "harmonic", "link_type"),
-    "mechanisms.core.errors": ("MechanismError", "InvalidParameterError", "AssemblyError", "DeadCentreWarning",
+    "mechanisms.core.errors": ("MechanismError", "InvalidParameterError", "AssemblyError", "SingularPositionWarning",
                                "MissingDerivativeError", "StructureError"),
     # layer 3
     "mechanisms.linkages": ("Mechanism", "Solution", "registry", "mechanism_classes", "groups"),
@@ -84,8 +84,14 @@ def _mechanism_classes() -> dict[str, type]:
     return importlib.import_module("mechanisms.linkages").mechanism_classes()
 
 
+_DEPRECATED = {"DeadCentreWarning": "mechanisms.core.errors"}
+"""Old names kept for one release (their module warns when they are used)."""
+
+
 def __getattr__(name: str) -> Any:
     """A public name of the package, imported from its module when first used, then kept here."""
+    if name in _DEPRECATED:
+        return getattr(importlib.import_module(_DEPRECATED[name]), name)
     if name in _MODULES:
         value: Any = importlib.import_module(_MODULES[name])
     elif name in _HOME:

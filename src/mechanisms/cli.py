@@ -25,7 +25,7 @@ import numpy as np
 
 from .linkages.base import Mechanism, Solution, registry
 from .linkages.linkage_file import FORMAT_SUMMARY, load_linkage
-from .core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError, MechanismError
+from .core.errors import AssemblyError, SingularPositionWarning, InvalidParameterError, MechanismError
 from .core.motion import Motion
 
 __all__ = ["main", "kinematic_table", "parse_number", "parse_angles", "parse_point", "MAX_POSITIONS"]
@@ -187,7 +187,7 @@ class _Table:
     def solutions(self, order: int = 2):
         """The solution of each chunk of positions (dead centres: unbounded values, no warning)."""
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DeadCentreWarning)  # unbounded values print as — / null
+            warnings.simplefilter("ignore", SingularPositionWarning)  # unbounded values print as — / null
             for phi in self.phi_chunks():
                 yield self.mechanism.solve(phi, self.omega, self.alpha, order=order)
 
@@ -206,7 +206,7 @@ class _Table:
         for index, phi in enumerate(self.phi_chunks()):
             try:
                 with warnings.catch_warnings():
-                    warnings.simplefilter("ignore", DeadCentreWarning)
+                    warnings.simplefilter("ignore", SingularPositionWarning)
                     # the first chunk to the full order, so that the crank's speed is checked too
                     joints = self.mechanism.solve(phi, self.omega, self.alpha, order=0 if index else 2).point_names
             except AssemblyError as error:

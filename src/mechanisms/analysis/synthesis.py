@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.errors import DeadCentreWarning, InvalidParameterError
+from ..core.errors import SingularPositionWarning, InvalidParameterError
 from ..core.validate import require_finite, require_length
 from ..linkages.four_bar import FourBar
 from .four_bar import grashof_class, transmission_angle
@@ -215,7 +215,7 @@ def check_design(design: CouplerOutputDesign, positions: int = 3600) -> DesignCh
     start = -0.25 * design.return_angle
     phi = start + np.linspace(0.0, 2.0 * math.pi, positions + 1)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         solution = mechanism.solve(phi, order=0)
     g = np.sin(phi - solution.angle("rocker").value)
     mu = transmission_angle(solution)

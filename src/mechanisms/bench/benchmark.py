@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike
 
 from ..core.motion import AngleMotion, Motion
 from ..linkages.base import Mechanism, Solution, registry
-from ..core.errors import DeadCentreWarning
+from ..core.errors import SingularPositionWarning
 from ..linkages.composed import Linkage
 from ..linkages.four_bar import FourBar
 from ..linkages.groups import RRR, Crank
@@ -131,7 +131,7 @@ def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha:
     phi_ld = np.atleast_1d(np.asarray(phi)).astype(np.longdouble)
     phi = phi_ld.astype(float)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         start = mechanism.solve(phi, omega, alpha, order=0)
     q = np.array([np.asarray(c.value, dtype=np.longdouble) for c in mechanism.coordinates(start)])
     q = newton_steps(mechanism.constraints, q, phi_ld, iterations)
@@ -160,7 +160,7 @@ def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         solution = mechanism.solve(phi, order=0)
     q = np.array([np.asarray(c.value, dtype=float) for c in mechanism.coordinates(solution)])
     _, matrix = jacobian(mechanism.constraints, q, phi)
@@ -202,7 +202,7 @@ def coordinate_errors(mechanism: Mechanism, q: np.ndarray | None, q_t: np.ndarra
 def _angle_rows(mechanism: Mechanism) -> tuple[bool, ...]:
     """Which of the coordinates are angles (the others are lengths), from a solution at one crank angle."""
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         sample = mechanism.solve(np.array([0.5]), order=0)
     return tuple(isinstance(c, AngleMotion) for c in mechanism.coordinates(sample))
 

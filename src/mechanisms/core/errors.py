@@ -7,6 +7,7 @@ angles where a mechanism cannot be assembled, and why.
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,7 +19,7 @@ __all__ = [
     "StructureError",
     "UnknownNameError",
     "MissingDerivativeError",
-    "DeadCentreWarning",
+    "SingularPositionWarning",
     "describe_angles",
     "describe_range",
 ]
@@ -143,12 +144,26 @@ class MissingDerivativeError(MechanismError, TypeError):
         super().__init__(f"{what} were not computed: solve with {solve} (this motion has order={order})")
 
 
-class DeadCentreWarning(UserWarning):
-    """Velocities or accelerations are unbounded at some crank angles (a dead centre).
+class SingularPositionWarning(UserWarning):
+    """Velocities or accelerations are unbounded at some crank angles: a singular (locking) position.
 
-    The solution marks these angles in ``Solution.singular`` and sets the unbounded values
-    to ``inf``/``nan`` on purpose; this warning says so, so nothing is NaN silently.
+    At a singular position the constraint Jacobian Φ_q is singular (the glossary's *singular
+    position*: e.g. the limits of a non-Grashof four-bar, a change point, a slider whose coupler is
+    perpendicular to its guide), so the driven links' rates cannot follow from the crank's. The
+    solution marks these angles in ``Solution.singular`` and sets the unbounded values to
+    ``inf``/``nan`` on purpose; this warning says so, so nothing is NaN silently. (The limit, or
+    dead-centre, positions of an output are not singular: the output is at rest there.)
     """
+
+
+def __getattr__(name: str) -> type:
+    """``DeadCentreWarning``, the old name of :class:`SingularPositionWarning` (deprecated, one release)."""
+    if name == "DeadCentreWarning":
+        warnings.warn("mechanisms: DeadCentreWarning is now SingularPositionWarning (the book's 'dead centre' "
+                      "is a limit position of the output, not a singular one); the old name goes in 0.3",
+                      DeprecationWarning, stacklevel=2)
+        return SingularPositionWarning
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def describe_angles(angles: ArrayLike, limit: int = 6) -> str:

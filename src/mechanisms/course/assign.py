@@ -33,7 +33,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ..analysis.assignments import Quantity, Task, assignments
-from ..core.errors import DeadCentreWarning, InvalidParameterError, MechanismError
+from ..core.errors import SingularPositionWarning, InvalidParameterError, MechanismError
 from ..linkages.base import Mechanism, Solution
 from .roster import IDENTITY_COLUMNS, Person
 
@@ -182,7 +182,7 @@ def answer_key(task: Task | str, variants: Sequence[Variant]) -> list[dict]:
     rows = []
     for variant in variants:
         with warnings.catch_warnings():
-            warnings.simplefilter("error", DeadCentreWarning)   # a valid variant has no dead centre
+            warnings.simplefilter("error", SingularPositionWarning)   # a valid variant has no dead centre
             solution = variant.solve()
         values = {q.column: quantity_values(solution, q.column) for q in task.quantities}
         for i, phi in enumerate(variant.positions_deg):

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..blocks.crank import crank_angle
-from ..core.errors import DeadCentreWarning, UnknownNameError, describe_angles
+from ..core.errors import SingularPositionWarning, UnknownNameError, describe_angles
 from ..core.validate import require_coordinate, require_order
 from ..core.motion import AngleMotion, Motion, PointMotion, point_on_link
 from .groups import Group
@@ -48,8 +48,8 @@ class Solution:
     order : int
         0, 1 or 2: positions, up to velocities, up to accelerations.
     singular : ndarray of bool
-        True where a velocity or acceleration is unbounded (a dead centre); those values
-        are ``inf`` or ``nan`` on purpose and a :class:`DeadCentreWarning` was issued.
+        True where a velocity or acceleration is unbounded (a singular position); those values
+        are ``inf`` or ``nan`` on purpose and a :class:`SingularPositionWarning` was issued.
     """
 
     def __init__(self, phi: np.ndarray, order: int, *, angles: dict[str, AngleMotion],
@@ -275,9 +275,9 @@ class Mechanism(ABC):
         -------
         Solution
             Every position, the singular ones included: where the constraints' Jacobian is singular to
-            within round-off (a dead centre, a change point, a block at its lever's pivot, parallel
+            within round-off (a singular position: a change point, a block at its lever's pivot, parallel
             lines, two joints that coincide) ``Solution.singular`` is True, the unbounded or undefined
-            values there are ``inf`` or ``nan`` on purpose, and a :class:`DeadCentreWarning` says so.
+            values there are ``inf`` or ``nan`` on purpose, and a :class:`SingularPositionWarning` says so.
             Nowhere else is a value ``nan``.
 
         Raises
@@ -301,9 +301,9 @@ class Mechanism(ABC):
         solution = self._solve(crank, order) if inner is None else inner._solve(crank, order).scaled(scale)
         if solution.singular.any() and (order or not _finite_at(solution, solution.singular)):
             warnings.warn(
-                f"{type(self).__name__}: velocities/accelerations are unbounded (dead centre) at crank "
+                f"{type(self).__name__}: velocities/accelerations are unbounded (a singular position) at crank "
                 f"angle(s) {describe_angles(solution.phi[solution.singular])}; see Solution.singular",
-                DeadCentreWarning, stacklevel=2)
+                SingularPositionWarning, stacklevel=2)
         return solution
 
     def _rescaled(self, factor: float) -> "Mechanism | None":

@@ -33,7 +33,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ..core.errors import AssemblyError, DeadCentreWarning, InvalidParameterError
+from ..core.errors import AssemblyError, SingularPositionWarning, InvalidParameterError
 from ..core.motion import PointMotion
 from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
 from .colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
@@ -359,7 +359,7 @@ def _member(mechanism: Mechanism, phi: np.ndarray, order: int, omega: float, poi
     vectors: list[np.ndarray] = []
     if valid.any():
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DeadCentreWarning)
+            warnings.simplefilter("ignore", SingularPositionWarning)
             solution = mechanism.solve(phi[valid], omega=omega, order=order)
         shape = solution.phi.shape
         found = {name: solution.point(name) for name in solution.point_names}
@@ -389,7 +389,7 @@ def _member(mechanism: Mechanism, phi: np.ndarray, order: int, omega: float, poi
 
 def _assembles(mechanism: Mechanism, phi: float) -> bool:
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeadCentreWarning)
+        warnings.simplefilter("ignore", SingularPositionWarning)
         try:
             mechanism.solve(np.array([phi]), order=0)
         except AssemblyError:
