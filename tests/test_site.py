@@ -230,6 +230,33 @@ NO_OVERFLOW = "document.documentElement.scrollWidth <= window.innerWidth + 1"
 PHONE = {"width": 390, "height": 844}
 
 
+# A code block or a display equation wider than its box makes the reader scroll inside it (issue 19,
+# item 7): each must fit at a desktop and at a phone width. scrollWidth counts the content that does
+# not fit, whether the box scrolls or not.
+BOX_WIDTHS = {"desktop": 1280, "phone": 375}
+WIDER_THAN_BOX = """() => [...document.querySelectorAll('div.highlight pre, mjx-container[display]')]
+    .filter(e => e.offsetParent !== null && e.scrollWidth > e.clientWidth + 1)
+    .map(e => `${e.tagName.toLowerCase()} ${e.scrollWidth} px in a box of ${e.clientWidth} px: `
+              + (e.textContent || '').trim().replace(/\\s+/g, ' ').slice(0, 60))"""
+
+
+@pytest.mark.parametrize("page_path", site_pages())
+def test_code_and_equations_fit_their_boxes(browser, servers, page_path):
+    context, page, _ = open_page(browser, servers("full"), page_path)
+    try:
+        page.wait_for_load_state("networkidle")
+        if page.evaluate("Boolean(window.MathJax && MathJax.startup && MathJax.startup.promise)"):
+            page.evaluate("MathJax.startup.promise")
+        offenders = []
+        for name, width in BOX_WIDTHS.items():
+            page.set_viewport_size({"width": width, "height": 900})
+            page.wait_for_timeout(200)
+            offenders += [f"{name} ({width} px): {o}" for o in page.evaluate(WIDER_THAN_BOX)]
+        assert offenders == [], f"{page_path}: wider than their box:\n" + "\n".join(offenders)
+    finally:
+        context.close()
+
+
 @pytest.mark.parametrize("edition", list(EDITIONS))
 def test_internal_links_resolve(edition):
     """Every link from a page to another file of the site points to a file that exists (no 404)."""
