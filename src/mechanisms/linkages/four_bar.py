@@ -15,6 +15,7 @@ angles in which a linkage assembles.
 
 from __future__ import annotations
 
+import functools
 import math
 from fractions import Fraction
 from typing import Sequence
@@ -251,6 +252,13 @@ def _require_frame(value: object) -> tuple[float, float]:
     return a, b
 
 
+@functools.lru_cache(maxsize=1024)
+def _change_points_of(crank: float, coupler: float, rocker: float, frame: tuple[float, float]) -> tuple[float, ...]:
+    """:func:`change_point_angles`, kept for each geometry: deciding a change point is exact (rational
+    arithmetic) and costs as much as a small solve, and a mechanism asks at every solve."""
+    return tuple(change_point_angles(crank, coupler, rocker, frame))
+
+
 class FourBar(Mechanism):
     """Hinged four-bar: crank O→A, coupler A→B, rocker C→B with pivots O = (0, 0), C = (a, b).
 
@@ -333,7 +341,8 @@ class FourBar(Mechanism):
 
     def change_points(self) -> tuple[float, ...]:
         """Crank angles (rad) of the change points the crank passes (empty for most linkages)."""
-        return change_point_angles(self.crank, self.coupler, self.rocker, self.frame)
+        return _change_points_of(float(self.crank), float(self.coupler), float(self.rocker),
+                                 (float(self.frame[0]), float(self.frame[1])))
 
     def sides(self, phi: ArrayLike) -> np.ndarray:
         """The geometric side (+1/−1) of B relative to A → C at each crank angle (continuation rule)."""
