@@ -353,7 +353,7 @@ def test_the_site_has_players(edition):
     assert missing == [], (f"the {edition} edition has no player on {missing} (pages with players: {pages}); "
                            f"rebuild with `{EDITIONS[edition][1]}` after converting them")
     jshtml = [p for p in site_pages(site) if "anim-buttons" in (site / p).read_text(encoding="utf8")]
-    assert jshtml == [], f"pages of the {edition} edition still hold a to_jshtml animation: {jshtml}"
+    assert jshtml == [], f"pages of the {edition} edition still hold a PNG-strip (jshtml) animation: {jshtml}"
 
 
 @pytest.mark.parametrize(("edition", "page_path"), edition_player_pages())
