@@ -51,13 +51,10 @@ def solved(mechanism, phi, order=0, omega=1.0):
 
 
 def joints_of(mechanism) -> set[str]:
-    found: set[str] = set()
-    for item in mechanism.scheme():
-        if isinstance(item, Bar):
-            found.update(item.joints)
-        elif isinstance(item, (Ground, Block)):
-            found.add(item.joint)
-    return found
+    """The mechanism's joints, as its own solution names them (independent of how the scene reads the scheme)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mech.SingularPositionWarning)
+        return set(mechanism.solve(np.array([0.3]), order=0).point_names)
 
 
 def slider_position(r, l, e, phi):
