@@ -145,3 +145,11 @@ def test_best_time_keeps_the_shortest():
 def test_format_text_lists_every_result(report):
     text = bench.format_text(report)
     assert text.count("\n") >= len(report["results"])
+
+
+def test_reference_fields_are_named_and_unpack_as_a_triple():
+    m = mech.FourBar(crank=1.0, coupler=3.0, rocker=2.0, frame=(2.5, 0.0))
+    ref = bench.reference(m, [0.5])
+    q, q_t, q_tt = ref
+    assert ref.q is q and ref.q_t is q_t and ref.q_tt is q_tt
+    assert ref.q.shape == (2, 1) and ref.q.dtype == np.longdouble

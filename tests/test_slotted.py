@@ -300,3 +300,19 @@ def test_orders_compute_only_what_is_asked(m):
         np.testing.assert_array_equal(s1.angle(name).omega, s2.angle(name).omega)
     for name in s2.point_names:
         np.testing.assert_array_equal(s0.point(name).value, s2.point(name).value)
+
+
+def test_coriolis_by_name_equals_the_hand_calculation():
+    # r = 0.1, C = (0, 0.3), φ = 0, ω = 10: L = √0.1, φ − ξ = atan2(0.3, 0.1), so
+    # L_t = −ωr sin(φ − ξ) = −3/√10 and ω3 = ωr cos(φ − ξ)/L = 1: 2ω3·L_t = −6/√10 along the left normal.
+    lever = mech.SlottedLever(crank=0.1, pivot=(0.0, 0.3))
+    sol = lever.solve([0.0], omega=10.0)
+    assert sol.coriolis("A")[0] == pytest.approx(-6 / math.sqrt(10), rel=1e-14)
+
+
+def test_coriolis_of_an_unknown_pair_or_a_position_solution_names_the_cause():
+    lever = mech.SlottedLever(crank=0.1, pivot=(0.0, 0.3))
+    with pytest.raises(mech.UnknownNameError, match="sliding pair on a rotating guide named 'B'; known: A"):
+        lever.solve([0.0], omega=10.0).coriolis("B")
+    with pytest.raises(mech.UnknownNameError, match="known: none"):
+        lever.solve([0.0], order=0).coriolis("A")

@@ -26,7 +26,7 @@ if TYPE_CHECKING:   # what the names are, for type checkers and editors; nothing
     from . import core, plot, present, verify  # noqa: F401
     from .core import motion  # noqa: F401
     from .core.errors import (AssemblyError, SingularPositionWarning, InvalidParameterError,  # noqa: F401
-                              MechanismError, MissingDerivativeError, StructureError)
+                              MechanismError, MissingDerivativeError, StructureError, UnknownNameError)
     from .core.links import LINK_TYPES, LinkType, harmonic, link_type  # noqa: F401
     from .core.motion import (AngleMotion, Motion, PointMotion, fixed_point, lagrange_point,  # noqa: F401
                               plane_motion, point_on_link, polar, translated_point)
@@ -43,7 +43,7 @@ _NAMES: dict[str, tuple[str, ...]] = {
                                "point_on_link", "lagrange_point", "translated_point", "polar"),
     "mechanisms.core.links": ("LINK_TYPES", "LinkType", "harmonic", "link_type"),
     "mechanisms.core.errors": ("MechanismError", "InvalidParameterError", "AssemblyError", "SingularPositionWarning",
-                               "MissingDerivativeError", "StructureError"),
+                               "MissingDerivativeError", "StructureError", "UnknownNameError"),
     # layer 3
     "mechanisms.linkages": ("Mechanism", "Solution", "registry", "mechanism_classes", "groups"),
     "mechanisms.linkages.composed": ("Linkage",),

@@ -31,7 +31,7 @@ import os
 import platform
 import time
 import warnings
-from typing import Any, Callable, Iterable, Sequence, cast
+from typing import Any, Callable, Iterable, NamedTuple, Sequence, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -49,6 +49,7 @@ from ..verify.newton import jacobian, newton_steps, rates
 __all__ = [
     "benchmark_mechanisms",
     "reference",
+    "Reference",
     "coordinate_errors",
     "jacobian_condition",
     "output_bytes",
@@ -100,8 +101,20 @@ def benchmark_mechanisms() -> dict[str, Mechanism]:
 
 # --- the reference ------------------------------------------------------------------------------
 
+class Reference(NamedTuple):
+    """The reference coordinates of :func:`reference`: each of shape (k, n), row i the i-th coordinate
+    of ``mechanism.coordinates`` (constraint order), column j the j-th crank angle; ``numpy.longdouble``."""
+
+    q: np.ndarray
+    """Positions q (rad or m)."""
+    q_t: np.ndarray
+    """Velocities q_t (rad/s or m/s)."""
+    q_tt: np.ndarray
+    """Accelerations q_tt (rad/s² or m/s²)."""
+
+
 def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha: float = 0.0,
-              iterations: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+              iterations: int = 3) -> Reference:
     """The coordinates q with q_t and q_tt in extended precision, from the constraint equations.
 
     Parameters
@@ -117,7 +130,8 @@ def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha:
 
     Returns
     -------
-    (q, q_t, q_tt) : tuple of ndarray, shape (k, n), dtype longdouble
+    Reference
+        The named triple ``(q, q_t, q_tt)``, each of shape (k, n), dtype longdouble.
 
     Notes
     -----
@@ -137,7 +151,7 @@ def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha:
     q = newton_steps(mechanism.constraints, q, phi_ld, iterations)
     q_t, q_tt = rates(mechanism.constraints, q, phi_ld, np.longdouble(omega), np.longdouble(alpha), 2)
     assert q_t is not None and q_tt is not None   # order 2
-    return q, q_t, q_tt
+    return Reference(q, q_t, q_tt)
 
 
 def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:

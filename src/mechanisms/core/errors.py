@@ -114,7 +114,7 @@ class UnknownNameError(MechanismError, KeyError):
         self.what = what
         self.name = name
         self.known = list(known)
-        super().__init__(f"no {what} named {name!r}; known: {', '.join(self.known)}")
+        super().__init__(f"no {what} named {name!r}; known: {', '.join(self.known) or 'none'}")
 
     def __str__(self) -> str:            # KeyError's own __str__ would print the repr of the message
         return str(self.args[0])

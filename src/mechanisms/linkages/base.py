@@ -122,6 +122,22 @@ class Solution:
         """
         return self._lookup(self._sliders, name, "slider")
 
+    def coriolis(self, name: str) -> np.ndarray:
+        """The Coriolis acceleration 2ω·s_t of the block at a sliding pair on a rotating guide (m/s²).
+
+        The block slides along the guide with relative speed s_t while the guide turns at ω (chapter 5);
+        the term points along the guide's left normal, and this is its signed component there (its
+        magnitude a^k is the absolute value). Known from order 1 on.
+
+        Raises
+        ------
+        UnknownNameError
+            If the solution knows no Coriolis term at that name: no sliding pair on a rotating guide
+            there, or a solution of order 0 (also a :class:`KeyError`).
+        """
+        known = {joint: values["coriolis"] for joint, values in self.extras.items() if "coriolis" in values}
+        return np.asarray(self._lookup(known, name, "sliding pair on a rotating guide"))
+
     def scaled(self, factor: float) -> "Solution":
         """The same solution with every length multiplied by ``factor`` (points, sliders, extras; angles kept).
 
