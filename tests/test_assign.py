@@ -36,7 +36,7 @@ def test_crank_slider_variants_are_valid(seed):
         # transmission angle μ = 90° − |ψ| with sin ψ = (e − L1 sin φ)/L2 (loop closure in y), over a turn
         psi = np.arcsin((m.offset - m.crank * np.sin(FULL_TURN)) / m.rod)
         assert np.degrees(0.5 * np.pi - np.abs(psi)).min() >= 45.0
-        solution = m.solve(FULL_TURN, v.omega)          # assembles everywhere, no dead centre
+        solution = m.solve(FULL_TURN, v.omega)          # assembles everywhere, no singular position
         assert not solution.singular.any()
         assert 50 <= v.omega <= 300
 

@@ -89,7 +89,7 @@ def test_every_book_mechanism_composed_agrees_with_its_class(pair):
     cls_mechanism, composed, (links, points, sliders) = pair
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SingularPositionWarning)
-        phi = PHI + 0.013      # off the exact dead centres, where both are singular
+        phi = PHI + 0.013      # off the exact singular positions
         a, b = cls_mechanism.solve(phi, 2.5, -0.7), composed.solve(phi, 2.5, -0.7)
     for name in links:
         angles_agree(a.angle(name), b.angle(name), 1e-13)

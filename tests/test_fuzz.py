@@ -113,7 +113,7 @@ def check_solution(mechanism, solution, phi_given) -> None:
 @contextlib.contextmanager
 def quiet():
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")        # dead centres warn; that is the contract, not a failure
+        warnings.simplefilter("ignore")        # singular positions warn; that is the contract, not a failure
         yield
 
 

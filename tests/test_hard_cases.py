@@ -1,4 +1,4 @@
-"""The hard cases of chapter 9: dead centres, change points, limits of assembly, extreme scales.
+"""The hard cases of chapter 9: singular positions, change points, limits of assembly, extreme scales.
 
 Every expected value comes from outside the closed form under test: the extended-precision
 solution of the constraint equations (:func:`mechanisms.bench.reference`, Newton's method in
@@ -36,7 +36,7 @@ def coordinates(m, sol):
             np.array([c.acceleration for c in coords]))
 
 
-# --- the dead centres of a non-Grashof linkage ----------------------------------------------------
+# --- the singular positions of a non-Grashof linkage ----------------------------------------------------
 
 NON_GRASHOF = dict(crank=2.0, coupler=2.0, rocker=2.5, frame=(3.0, 0.0))   # s + l = 5 > p + q = 4.5
 

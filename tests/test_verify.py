@@ -127,7 +127,7 @@ def test_checks_catch_a_wrong_velocity():
 
 
 class StuckYoke(ScotchYoke):
-    """Marks φ = 0 as a dead centre, to test the warning."""
+    """Marks φ = 0 as a singular position, to test the warning."""
 
     def _solve(self, crank, order):
         sol = super()._solve(crank, order)

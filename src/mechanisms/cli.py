@@ -115,7 +115,7 @@ def _class_value(parameter, value):
 
 
 def _number(value: float):
-    """A JSON-safe number: unbounded values (dead centres) become null."""
+    """A JSON-safe number: unbounded values (singular positions) become null."""
     value = float(value)
     return value if math.isfinite(value) else None
 
@@ -185,7 +185,7 @@ class _Table:
         self.mechanism, self.phi_chunks, self.omega, self.alpha, self.points = mechanism, phi_chunks, omega, alpha, points
 
     def solutions(self, order: int = 2):
-        """The solution of each chunk of positions (dead centres: unbounded values, no warning)."""
+        """The solution of each chunk of positions (singular positions: unbounded values, no warning)."""
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SingularPositionWarning)  # unbounded values print as — / null
             for phi in self.phi_chunks():

@@ -83,7 +83,7 @@ class RotationLaw:
     centre : complex
         The crank pivot O (m).
     singular : ndarray of bool
-        Positions where the mechanism's solution is singular (a dead centre).
+        Positions where the mechanism's solution is singular (a singular position: rates unbounded).
 
     Notes
     -----

@@ -203,7 +203,7 @@ def joint_forces(mechanism: Mechanism, solution: Solution, masses: Mapping[str, 
     so its moment equation only fixes the guide's moment, which does no work and is not sought.
     Four-bar: R_O, R_A, R_B, R_C and M_d against three equations for each of its three links.
     Joint forces enter the body nearer the frame with the opposite sign (Newton's third law).
-    At a dead centre (``solution.singular``) the results are NaN.
+    At a singular position (``solution.singular``) the results are NaN.
     """
     if solution.order < 2:
         raise MechanismError(f"joint forces need accelerations: solve with order=2 (got order={solution.order})")

@@ -60,7 +60,7 @@ NICE_STEPS = (1.0, 2.0, 2.5, 4.0, 5.0)
 """The mantissas of the scales a course allows: 1, 2, 2.5, 4, 5 × 10ᵏ."""
 
 class PlanError(MechanismError):
-    """A plan cannot be built at this position: two of its lines are parallel (a dead centre)."""
+    """A plan cannot be built at this position: two of its lines are parallel (a singular position)."""
 
 
 # --- geometry of the construction -------------------------------------------------------------------
@@ -103,7 +103,7 @@ def meet(first_point: complex, first_direction: complex, second_point: complex,
     denominator = _cross(d1, d2)
     if abs(denominator) < 1e-12 * abs(d1) * abs(d2):
         raise PlanError("the two lines of the plan are parallel, so they do not meet: the mechanism is "
-                        "at a dead centre (or a change point) here, choose another crank position")
+                        "at a singular position (or a change point) here, choose another crank position")
     gap = complex(second_point) - complex(first_point)
     t1 = _cross(gap, d2) / denominator
     t2 = _cross(gap, d1) / denominator

@@ -32,10 +32,10 @@ from ..core.motion import AngleMotion, Motion, PointMotion
 __all__ = ["SliderOnLine", "slider_on_line"]
 
 # A joint this much (relative to the rod) beyond the reach of the rod is taken as just reaching it:
-# a few units of round-off in h, e.g. from sin(φ) at a crank angle that is exactly a dead centre.
+# a few units of round-off in h, e.g. from sin(φ) at a crank angle that is exactly a singular position.
 _REACH_TOLERANCE = 8.0 * np.finfo(float).eps
 _SINGULAR_FACTOR = 100.0
-"""w² below this many times its round-off is a dead centre (w ≲ 6e-7·rod for unit sizes)."""
+"""w² below this many times its round-off is a singular position (w ≲ 6e-7·rod for unit sizes)."""
 
 
 @dataclass(frozen=True)

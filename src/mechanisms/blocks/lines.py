@@ -341,7 +341,7 @@ def circle_on_line(centre: PointMotion | complex, radius: float, through: PointM
         where = _where(angles, unreachable)
         raise AssemblyError(f"the circle of radius {radius:g} m does not reach the line: its centre is up to "
                             f"{float(np.max(np.abs(h.value))):.6g} m from it", angles=where)
-    singular = reach <= 100.0 * slack   # w within round-off of 0: a dead centre, rates unbounded
+    singular = reach <= 100.0 * slack   # w within round-off of 0: a singular position, rates unbounded
     w = np.where(singular, 0.0, np.sqrt(np.maximum(reach, 0.0)))
     with np.errstate(divide="ignore", invalid="ignore"):
         w_t: Any = -h.value * h.velocity / w if order >= 1 else None

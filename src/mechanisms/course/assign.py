@@ -182,7 +182,7 @@ def answer_key(task: Task | str, variants: Sequence[Variant]) -> list[dict]:
     rows = []
     for variant in variants:
         with warnings.catch_warnings():
-            warnings.simplefilter("error", SingularPositionWarning)   # a valid variant has no dead centre
+            warnings.simplefilter("error", SingularPositionWarning)   # a valid variant has no singular position
             solution = variant.solve()
         values = {q.column: quantity_values(solution, q.column) for q in task.quantities}
         for i, phi in enumerate(variant.positions_deg):

@@ -10,7 +10,7 @@ Tolerances
 ----------
 An answer is right when ``|answer − key| ≤ max(r·|key|, floor)``: ``r`` is 1 % unless the teacher
 sets another, and the floor depends on the kind of quantity (:data:`TOLERANCES`), so that a value
-close to zero (a slider near a dead centre) is not asked for to 1 % of almost nothing. Angles
+close to zero (a slider near a limit position) is not asked for to 1 % of almost nothing. Angles
 (``*.angle_deg``) are compared modulo 360° against an absolute tolerance only.
 
 Problems with a file are of two sorts. A file that cannot be graded at all (missing, not CSV,

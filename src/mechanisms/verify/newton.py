@@ -168,7 +168,7 @@ def _newton(constraints, q, phi, tol, max_iter):
         bad = ~np.isfinite(size)
         if bad.any():
             raise AssemblyError("Newton's method met a singular constraint Jacobian (no assembly or a "
-                                "dead centre)", phi[bad])
+                                "singular position)", phi[bad])
         bound = 1.0 + np.max(np.abs(q), axis=0)
         stalled = (size >= 0.9 * previous) & (size <= np.sqrt(tol) * bound)
         done |= (size <= tol * bound) | stalled
