@@ -77,7 +77,7 @@ def parse_angles(text: str) -> np.ndarray:
 
 
 def parse_point(text: str) -> tuple[str, str, float, float]:
-    """``NAME=LINK:U[,V]`` → (name, link, u, v) with u, v in m."""
+    """``NAME=LINK:U[,W]`` → (name, link, u, w) with u, w in m (the book's point fixed to a link)."""
     try:
         name, rest = text.split("=", 1)
         link, coords = rest.split(":", 1)
@@ -85,7 +85,7 @@ def parse_point(text: str) -> tuple[str, str, float, float]:
         if not name or not link or len(values) not in (1, 2) or not all(map(math.isfinite, values)):
             raise ValueError
     except ValueError:
-        raise InvalidParameterError("--point", text, "NAME=LINK:U or NAME=LINK:U,V (m), e.g. S2=coupler:0.09") from None
+        raise InvalidParameterError("--point", text, "NAME=LINK:U or NAME=LINK:U,W (m), e.g. S2=coupler:0.09") from None
     return name, link, values[0], values[1] if len(values) == 2 else 0.0
 
 
@@ -123,7 +123,7 @@ def _number(value: float):
 def kinematic_table(mechanism: Mechanism, solution: Solution,
                     points: Sequence[tuple[str, str, float, float]] = ()) -> list[dict]:
     """Rows of the kinematic table: one dict per crank position, keys as in docs/DESIGN.md's JSON."""
-    extra = {name: solution.point_on(link, u, v) for name, link, u, v in points}
+    extra = {name: solution.point_on(link, u, w) for name, link, u, w in points}
     all_points = {name: solution.point(name) for name in solution.point_names} | extra
     rows = []
     for i in range(len(solution)):
@@ -367,8 +367,8 @@ def _add_table_options(sub: argparse.ArgumentParser) -> None:
     where = sub.add_mutually_exclusive_group()
     where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
     where.add_argument("--positions", type=int, default=None, help="N positions evenly over a turn (default 12)")
-    sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,V]",
-                     help="a point fixed to LINK, U m along it from its first joint, V m to its left")
+    sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,W]",
+                     help="a point fixed to LINK, U m along it from its first joint, W m to its left")
     sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
 
 

@@ -397,7 +397,7 @@ def _positions(mechanism: Mechanism, solution: Solution, index: int,
 def _check_extra(extra, allowed: Sequence[str]) -> None:
     for name, spec in (extra or {}).items():
         if len(spec) != 3 or spec[0] not in allowed:
-            raise InvalidParameterError("points", {name: spec}, "a mapping NAME -> (LINK, u, v) with LINK one of "
+            raise InvalidParameterError("points", {name: spec}, "a mapping NAME -> (LINK, u, w) with LINK one of "
                                         + ", ".join(allowed))
 
 
@@ -625,8 +625,8 @@ def velocity_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
     index : int
         Which crank position of the solution.
     points : dict, optional
-        Further points of links by name: ``{"S2": ("coupler", u, v)}``, u along the link from its
-        first joint and v to its left (m), found on the plan by their images.
+        Further points of links by name: ``{"S2": ("coupler", u, w)}``, u along the link from its
+        first joint and w to its left (m), found on the plan by their images.
     scale : float, optional
         μ_v in (m/s)/mm; by default the smallest course scale (1, 2, 2.5, 4, 5 × 10ᵏ) that keeps
         every vertex of the plan within 100 mm of the pole.

@@ -167,7 +167,7 @@ class Solution:
         along : float
             Distance u (m) from the link's first joint along the link.
         left : float
-            Distance v (m) to the left of the link (counter-clockwise side).
+            Distance w (m) to the left of the link (counter-clockwise side).
 
         Raises
         ------
