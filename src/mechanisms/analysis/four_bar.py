@@ -207,7 +207,7 @@ def half_angle_terms(phi: ArrayLike, crank: float, coupler: float, rocker: float
     crank, coupler, rocker : float
         L1, L2, L3 (m).
     frame : tuple of float
-        The rocker pivot C = (a, b) (m).
+        The rocker pivot C = (x_C, y_C) (m).
 
     Returns
     -------
@@ -377,7 +377,7 @@ def _data_four_bar(m: FourBar) -> list[tuple[str, str, str, str]]:
     return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
             ("L2", "coupler length |AB|", f"{m.coupler:.3f}", "m"),
             ("L3", "rocker length |CB|", f"{m.rocker:.3f}", "m"),
-            ("(a, b)", "rocker pivot C", f"({m.frame[0]:.3f}, {m.frame[1]:.3f})", "m"),
+            ("(x_C, y_C)", "rocker pivot C", f"({m.frame[0]:.3f}, {m.frame[1]:.3f})", "m"),
             ("", "assembly (branch)", f"{m.branch:+d}: B to the {side} of the line from A to C", "")]
 
 

@@ -377,7 +377,7 @@ def rocker_in_block_law(s: ArrayLike, curvature: float,
     curvature : float
         k = 1/r (1/m).
     pivot : tuple of float
-        The block's pivot B = (a, b) (m); the source's problem 3 has B = (0, d).
+        The block's pivot B = (x_B, y_B) (m); the source's problem 3 has B = (0, d).
 
     Returns
     -------

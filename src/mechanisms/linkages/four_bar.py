@@ -1,7 +1,7 @@
 """Layer 3: the hinged four-bar (crank-rocker and its family), chapter 4.
 
 Joints: crank pivot O at the origin, crank pin A, coupler-rocker joint B, rocker pivot C at
-(a, b). Links: crank O → A (L1, angle φ), coupler A → B (L2, angle ψ), rocker C → B (L3,
+(x_C, y_C). Links: crank O → A (L1, angle φ), coupler A → B (L2, angle ψ), rocker C → B (L3,
 angle ξ). The loop-closure equations of the lecture (Alyushin, 2008) are
 
     L1 cos φ + L2 cos ψ − L3 cos ξ = a,
@@ -72,7 +72,7 @@ def half_angle_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocke
     crank, coupler, rocker : float
         L1, L2, L3 (m).
     frame : (float, float)
-        The rocker pivot (a, b) (m).
+        The rocker pivot C = (x_C, y_C) (m).
     branch : int
         +1 takes the + sign before the root, −1 the − sign; it is the same geometric branch
         as :class:`FourBar`'s (B to the left of A → C for +1).
@@ -248,7 +248,7 @@ def _sides(phi: np.ndarray, branch: int, theta0: float, flips: Sequence[float]) 
 def _require_frame(value: object) -> tuple[float, float]:
     a, b = require_pair("frame", value)
     if a == 0.0 and b == 0.0:
-        raise InvalidParameterError("frame", value, "a rocker pivot (a, b) other than the crank pivot (0, 0)")
+        raise InvalidParameterError("frame", value, "a rocker pivot (x_C, y_C) other than the crank pivot (0, 0)")
     return a, b
 
 
@@ -260,14 +260,14 @@ def _change_points_of(crank: float, coupler: float, rocker: float, frame: tuple[
 
 
 class FourBar(Mechanism):
-    """Hinged four-bar: crank O→A, coupler A→B, rocker C→B with pivots O = (0, 0), C = (a, b).
+    """Hinged four-bar: crank O→A, coupler A→B, rocker C→B with pivots O = (0, 0), C = (x_C, y_C).
 
     Parameters
     ----------
     crank, coupler, rocker : float
         L1, L2, L3 (m).
     frame : (float, float)
-        The rocker pivot C = (a, b) (m).
+        The rocker pivot C = (x_C, y_C) (m).
     branch : int
         +1: B to the left of the directed line A → C; −1: to the right.
     keep_side : bool
@@ -297,7 +297,7 @@ class FourBar(Mechanism):
         Parameter("crank", "length", "crank length L1, m"),
         Parameter("coupler", "length", "coupler length L2 (A to B), m"),
         Parameter("rocker", "length", "rocker length L3 (C to B), m"),
-        Parameter("frame", "pair", "rocker pivot C = (a, b), m, as A,B"),
+        Parameter("frame", "pair", "rocker pivot C = (x_C, y_C), m, as X,Y"),
         Parameter("branch", "branch", "+1: B left of the line A->C, -1: right of it", 1),
     )
     links = {"crank": "O", "coupler": "A", "rocker": "C"}
@@ -313,7 +313,7 @@ class FourBar(Mechanism):
 
     @property
     def pivot(self) -> complex:
-        """The rocker pivot C as ``a + ib`` (m)."""
+        """The rocker pivot C as ``x_C + i y_C`` (m)."""
         return complex(*self.frame)
 
     @property

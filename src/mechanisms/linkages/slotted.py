@@ -1,7 +1,7 @@
 """Slotted-link mechanisms (chapter 5): a block sliding in the slot of a moving link.
 
 * :class:`SlottedLever` — crank O–A, a block on the crank pin A sliding along a lever that turns
-  about the fixed pivot C = (a, b): oscillating (|OC| > r), rotating (|OC| < r) or with the
+  about the fixed pivot C = (x_C, y_C): oscillating (|OC| > r), rotating (|OC| < r) or with the
   pivot on the crank circle (|OC| = r), where the block passes through the pivot.
 * :class:`RockerInBlock` — the guide with a moving axis: a rocker hinged to the crank pin A slides
   through a block that swivels about the fixed point B (source 002, problem 3; an oscillating
@@ -53,14 +53,14 @@ def _lever_part(crank: AngleMotion, radius: float, pivot: complex, kind: str) ->
 
 
 class SlottedLever(Mechanism):
-    """Crank with a slotted lever: a block on the crank pin slides along a lever about (a, b).
+    """Crank with a slotted lever: a block on the crank pin slides along a lever about C = (x_C, y_C).
 
     Parameters
     ----------
     crank : float
         Crank radius r = |OA| (m), the textbook's l₁.
     pivot : tuple of float
-        The lever's fixed pivot C = (a, b) (m); the crank turns about O = (0, 0).
+        The lever's fixed pivot C = (x_C, y_C) (m); the crank turns about O = (0, 0).
     lever : float, optional
         Length of the lever from C to its end B (m), for drawings; at least ``|OC| + r``, the
         farthest the block gets from the pivot (default: exactly that).
@@ -80,8 +80,8 @@ class SlottedLever(Mechanism):
 
     cli_name = "slotted-lever"
     cli_parameters = (
-        Parameter("crank", "length", "crank radius r = |OA|, m"),
-        Parameter("pivot", "pair", "the lever's fixed pivot C = A,B (m); the crank turns about the origin"),
+        Parameter("crank", "length", "crank length L1 = |OA|, m"),
+        Parameter("pivot", "pair", "the lever's fixed pivot C = (x_C, y_C), m, as X,Y; the crank turns about the origin"),
     )
     links = {"crank": "O", "lever": "C"}
     benchmark = True
@@ -165,7 +165,7 @@ class RockerInBlock(Mechanism):
     crank : float
         Crank radius r = |OA| (m) (source 002: r = 1/k).
     pivot : tuple of float
-        The block's fixed pivot B = (a, b) (m) (source 002: (0, d)).
+        The block's fixed pivot B = (x_B, y_B) (m) (source 002: (0, d)).
     reach : float, optional
         Distance ρ from A to each end of the rocker (m): D = A + ρ·exp(iψ) beyond the block, C = A − ρ·exp(iψ)
         on the other side of the hinge. Default ``|OB| + r``, so that the block never leaves the rocker.
@@ -187,8 +187,8 @@ class RockerInBlock(Mechanism):
     cli_name = "rocker-in-block"
     always_assembles = True
     cli_parameters = (
-        Parameter("crank", "length", "crank radius r = |OA|, m"),
-        Parameter("pivot", "pair", "the block's fixed pivot B = A,B (m)"),
+        Parameter("crank", "length", "crank length L1 = |OA|, m"),
+        Parameter("pivot", "pair", "the block's fixed pivot B = (x_B, y_B), m, as X,Y"),
     )
     links = {"crank": "O", "rocker": "A"}
 
@@ -241,7 +241,7 @@ class Shaper(Mechanism):
     crank : float
         Crank radius r = |OA| (m); the crank turns about O = (0, 0).
     pivot : tuple of float
-        The lever's pivot C = (a, b) (m), farther from O than r (the lever oscillates).
+        The lever's pivot C = (x_C, y_C) (m), farther from O than r (the lever oscillates).
     lever : float
         Lever length |CB| (m), at least ``|OC| + r``.
     rod : float
@@ -261,8 +261,8 @@ class Shaper(Mechanism):
 
     cli_name = "shaper"
     cli_parameters = (
-        Parameter("crank", "length", "crank radius r = |OA|, m"),
-        Parameter("pivot", "pair", "the lever's fixed pivot C = A,B (m)"),
+        Parameter("crank", "length", "crank length L1 = |OA|, m"),
+        Parameter("pivot", "pair", "the lever's fixed pivot C = (x_C, y_C), m, as X,Y"),
         Parameter("lever", "length", "lever length |CB|, m"),
         Parameter("rod", "length", "rod length |BD| from the lever's end to the ram, m"),
         Parameter("ram_height", "number", "the ram's guide is the line y = RAM_HEIGHT, m"),
@@ -360,7 +360,7 @@ class SlottedRockers(Mechanism):
 
     cli_name = "slotted-rockers"
     cli_parameters = (
-        Parameter("crank", "length", "crank radius r = |OA|, m"),
+        Parameter("crank", "length", "crank length L1 = |OA|, m"),
         Parameter("pivot", "pair", "the lever's pivot O1 = A,B (m)"),
         Parameter("rocker_pivot", "pair", "the second rocker's pivot O2 = M,N (m)"),
         Parameter("rocker", "length", "the second rocker's length |O2 D|, m"),
@@ -463,7 +463,7 @@ class SliderOnCoupler(Mechanism):
 
     cli_name = "slider-on-coupler"
     cli_parameters = (
-        Parameter("crank", "length", "crank radius r = |OA|, m"),
+        Parameter("crank", "length", "crank length L1 = |OA|, m"),
         Parameter("rod", "length", "coupler length |AB|, m"),
         Parameter("offset", "number", "the slider B runs on the line y = OFFSET, m", 0.0),
         Parameter("guide_point", "pair", "a point X0,Y0 of the fixed guide of L, m"),
