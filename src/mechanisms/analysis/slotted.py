@@ -160,7 +160,7 @@ def _check_slotted_lever(mechanism: SlottedLever) -> list[str]:
 
 
 def _data_slotted_lever(m: SlottedLever) -> list[tuple[str, str, str, str]]:
-    return [("r", "crank radius |OA| (the block is on the crank pin A)", f"{m.crank:.3f}", "m"),
+    return [("L1", "crank length |OA| (the block is on the crank pin A)", f"{m.crank:.3f}", "m"),
             ("(x_C, y_C)", "the lever's fixed pivot C", f"({m.pivot[0]:.3f}, {m.pivot[1]:.3f})", "m"),
             ("K", "time ratio of the lever (for reference)",
              f"{time_ratio(m.crank, m.pivot_distance):.3f}", "")]
