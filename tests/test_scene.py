@@ -448,3 +448,13 @@ def test_member_index_of_values_not_in_the_explorer_raises_invalid_parameter_err
         s.member_index(crank=2.0)            # not one of the slider's values
     with pytest.raises(mech.InvalidParameterError):
         s.member_index(rod=0.5)              # not a parameter of this explorer
+
+
+def test_labels_can_use_the_pages_letters_while_the_player_keeps_the_joints():
+    lever = mech.SlottedLever(crank=0.1, pivot=(0.0, 0.3))
+    html = scene(lever, frames=8, labels={"C": "O_1"}).html()
+    label = re.search(r'<text class="mech-label" data-joint="C"[^>]*>(.*?)</text>', html).group(1)
+    assert label.startswith("O<tspan") and ">1</tspan>" in label   # O with a subscript 1
+    plain = scene(lever, frames=8).html()
+    assert re.search(r'data-joint="C"[^>]*>C</text>', plain)
+    assert plain.count('class="mech-label"') == html.count('class="mech-label"')

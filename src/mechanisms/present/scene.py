@@ -231,7 +231,8 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
              start: float = 0.0, angles: Any = None, paths: Sequence[str] = (), arrows: Sequence[Arrow] = (),
              points: Mapping[str, PointFunction] | None = None, lines: Sequence[Line] = (),
              readout: Sequence[Readout] = (), notes: Callable[[Mechanism], Iterable[str]] | None = None,
-             title: str = "", angle_symbol: str = "φ", omega: float = 1.0, labels: bool = True,
+             title: str = "", angle_symbol: str = "φ", omega: float = 1.0,
+             labels: bool | Mapping[str, str] = True,
              still: Mapping[str, float] | None = None, still_angle: float | None = None,
              caption: str = "") -> Scene:
     """A family of moving figures, one per value (or pair of values) of the parameters, precomputed.
@@ -266,8 +267,9 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
         The crank angle's symbol in the readout.
     omega : float
         Crank speed φ_t (rad/s) of the velocities and accelerations (1 unless the page says otherwise).
-    labels : bool
-        Write the joints' names.
+    labels : bool or mapping
+        Write the joints' names; a mapping ``{package name: label}`` writes some under the page's own
+        letters (``{"L": "E", "O1": "C"}``), the others under the package's.
     still : mapping, optional
         The parameter values of the still image (default: the first member).
     still_angle : float, optional
@@ -406,7 +408,7 @@ def _spread(values: np.ndarray, valid: np.ndarray, dtype: type) -> np.ndarray:
 # --- the data ---------------------------------------------------------------------------------------------
 
 def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Sequence[str], arrows: Sequence[Arrow],
-            lines: Sequence[Line], readout: Sequence[Readout], labels: bool) -> dict[str, Any]:
+            lines: Sequence[Line], readout: Sequence[Readout], labels: bool | Mapping[str, str]) -> dict[str, Any]:
     joints = _joints(first)
     body = np.concatenate([np.concatenate([w[np.isfinite(w)] for name, w in m["where"].items()
                                            if name in joints] or [np.zeros(0)])
@@ -446,7 +448,7 @@ def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Seque
         "step": step,
         "size": 0.025 * extent,
         "view": _view(everything, extent),
-        "labels": labels,
+        "labels": labels if isinstance(labels, bool) else True,
         "parts": _parts(first),
         "paths": list(paths),
         "lines": [{"points": list(line.points), "colour": line.colour, "dashed": line.dashed} for line in lines],
@@ -455,6 +457,8 @@ def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Seque
         "readout": [{"label": r.label, "unit": r.unit, "digits": r.digits} for r in readout],
         "members": [],
     }
+    if isinstance(labels, Mapping) and labels:
+        data["names"] = {str(k): str(v) for k, v in labels.items()}   # the page's letters for some joints
     extra = list(dict.fromkeys(name for m in members for name in m["where"] if name not in joints))
     data["dots"] = extra
     for m in members:
@@ -632,7 +636,7 @@ def _svg(data: dict[str, Any], member_index: int, frame: int) -> str:
         for name in list(joints) + list(data["dots"]):
             c, hidden = at(name) or (0.0, 0.0), "" if at(name) else ' style="display:none"'
             text.append(f'<text class="mech-label" data-joint="{name}"{hidden} x="{num(c[0] + 0.6 * size)}" '
-                        f'y="{num(-c[1] - 0.6 * size)}">{_subscripted(name, font)}</text>')
+                        f'y="{num(-c[1] - 0.6 * size)}">{_subscripted(data.get("names", {}).get(name, name), font)}</text>')
     for index, arrow in enumerate(data["arrows"]):
         p, vector = at(arrow["at"]), data["members"][member_index]["vectors"][index]
         shown = p is not None and vector[2 * frame] is not None
