@@ -33,7 +33,7 @@ def test_velocity_plan_is_drawn_to_scale_with_its_letters_and_scale():
     _, v, _ = _example_plans()
     ax = plot_plans.draw_plan(v)
     texts = [t.get_text() for t in ax.texts]
-    for letter in ("p", "a", "b", "s2"):
+    for letter in ("$p$", "$a$", "$b$", "$s_{2}$"):              # the book's letters, in mathtext
         assert letter in texts
     assert any("0.2 (m/s)/mm" in t for t in texts)          # μ_v = 0.2 (m/s)/mm, the course scale for 17.2 m/s
     arrows = _arrows(ax)
@@ -59,7 +59,7 @@ def test_acceleration_plan_draws_normal_components_dashed_and_uses_its_colour():
     _, _, a = _example_plans()
     ax = plot_plans.draw_plan(a, names=True)
     texts = [t.get_text() for t in ax.texts]
-    for letter in ("π", "a′", "n2", "b′", "s2′"):
+    for letter in (r"$\pi$", "$a'$", "$n_{2}$", "$b'$", "$s_{2}'$"):
         assert letter in texts
     assert "$a^{n}_{BA}$" in texts and "$a^{t}_{BA}$" in texts
     assert any("50 (m/s²)/mm" in t for t in texts)
@@ -76,7 +76,38 @@ def test_slotted_lever_plan_draws_the_coriolis_component():
     sol = m.solve(np.radians([64.0]), omega=10.0)
     ax = plot_plans.draw_plan(plans.acceleration_plan(m, sol))
     texts = [t.get_text() for t in ax.texts]
-    assert "$a^{k}_{A3A2}$" in texts and "k" in texts and "a3′" in texts
+    assert "$a^{k}_{A_{3}A_{2}}$" in texts and "$k$" in texts and "$a_{3}'$" in texts
+
+
+def test_letters_in_the_book_s_notation():
+    # the chapter 10 letters: digits as subscripts, ′ as a prime, π as \pi (hand-written expectations)
+    assert plot_plans.vertex_label("a3′") == "$a_{3}'$"
+    assert plot_plans.vertex_label("π") == r"$\pi$"
+    assert plot_plans.vertex_label("n4") == "$n_{4}$"
+    assert plot_plans.vector_label("a^{k}_{A3A2}") == "$a^{k}_{A_{3}A_{2}}$"
+    assert plot_plans.vector_label("v_{BA}") == "$v_{BA}$"
+
+
+@pytest.mark.parametrize("case", ["shaper", "crank-slider", "slotted lever", "four-bar"])
+def test_no_two_letters_of_a_plan_overlap(case):
+    # the plans of chapter 10: every letter and vector name is placed clear of the others
+    machines = {"shaper": (mech.Shaper(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22),
+                           330.0, None),
+                "crank-slider": (EXAMPLE, 30.0, {"S2": ("coupler", 0.09, 0.0)}),
+                "slotted lever": (mech.SlottedLever(crank=0.1, pivot=(0.0, 0.25)), 64.0, None),
+                "four-bar": (mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05)), 60.0, {"M": ("coupler", 0.2, 0.12)})}
+    m, phi, points = machines[case]
+    sol = m.solve(np.radians([phi]), omega=10.0)
+    v = plans.velocity_plan(m, sol, points=points)
+    a = plans.acceleration_plan(m, sol, points=points, velocity=v)
+    fig, axes = plot_plans.draw_plans(m, sol, v, a, figsize=(9.5, 10.0))
+    fig.canvas.draw()
+    for ax in axes[1:]:
+        boxes = [t.get_bbox_patch().get_window_extent() for t in ax.texts if t.get_bbox_patch() is not None]
+        assert len(boxes) >= 4
+        for i, first in enumerate(boxes):
+            for second in boxes[:i]:
+                assert not first.overlaps(second)
 
 
 def test_draw_plans_puts_the_mechanism_above_its_two_plans():
@@ -84,7 +115,7 @@ def test_draw_plans_puts_the_mechanism_above_its_two_plans():
     fig, axes = plot_plans.draw_plans(EXAMPLE, sol, v, a)
     assert len(axes) == 3
     assert axes[1].get_title() == "velocity plan" and axes[2].get_title() == "acceleration plan"
-    assert "S2" in [t.get_text() for t in axes[0].texts]
+    assert r"$\mathrm{S}_{2}$" in [t.get_text() for t in axes[0].texts]
     fig, axes = plot_plans.draw_plans(EXAMPLE, sol, v)
     assert len(axes) == 2
 

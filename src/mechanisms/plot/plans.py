@@ -9,7 +9,8 @@ vectors and components have the colour of the link whose motion they describe
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Mapping
+import re
+from typing import TYPE_CHECKING, Any, Mapping
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -23,7 +24,8 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["LINK_ROLES", "draw_plan", "draw_plans", "draw_instant_centres", "draw_centre_velocities"]
+__all__ = ["LINK_ROLES", "draw_plan", "draw_plans", "draw_instant_centres", "draw_centre_velocities",
+           "vertex_label", "vector_label"]
 
 LINK_ROLES = {"crank": "crank", "coupler": "coupler", "rocker": "rocker", "lever": "lever", "slider": "slider",
               "rod": "coupler"}
@@ -42,6 +44,46 @@ _STYLE = {  # kind → (line style, line width)
 # Labels sit on a light box, so a line or an arrowhead under a label does not make it illegible.
 _LABEL_BOX = {"boxstyle": "round,pad=0.12", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
 
+_LETTER = re.compile(r"^(\D+?)(\d*)(′*)$")
+
+
+def vertex_label(label: str) -> str:
+    r"""A plan's vertex letter in matplotlib mathtext (and LaTeX): ``a3′`` → ``$a_3'$``, ``π`` → ``$\pi$``.
+
+    Parameters
+    ----------
+    label : str
+        A vertex as the plans name it (``p``, ``a``, ``s2``, ``π``, ``a′``, ``n2``, ``k`` …).
+
+    Returns
+    -------
+    str
+        The letter in math mode, digits as a subscript and ``′`` as a prime, as the book writes them
+        ($s_2$, $a'$, $n_2$; chapter 10).
+    """
+    match = _LETTER.match(label)
+    if match is None:
+        return label
+    letter, digits, primes = match.groups()
+    letter = r"\pi" if letter == "π" else letter
+    return f"${letter}{f'_{{{digits}}}' if digits else ''}{chr(39) * len(primes)}$"
+
+
+def vector_label(latex: str) -> str:
+    r"""A plan's vector name in mathtext, the joints' digits as subscripts: ``a^{k}_{A3A2}`` → ``$a^{k}_{A_3A_2}$``.
+
+    Parameters
+    ----------
+    latex : str
+        The vector's name in LaTeX without dollars, as ``PlanVector.latex`` gives it.
+
+    Returns
+    -------
+    str
+        The name in math mode, as the book writes it ($v_{BA}$, $a^n_{BA}$, $a^k_{A_3A_2}$; chapter 10).
+    """
+    return "$" + re.sub(r"([A-Z])(\d+)", r"\1_{\2}", latex) + "$"
+
 
 def _arrow(ax: Axes, tail: complex, head: complex, colour: str, style: str, width: float, zorder: int = 3) -> None:
     ax.annotate("", xy=(head.real, head.imag), xytext=(tail.real, tail.imag),
@@ -49,9 +91,98 @@ def _arrow(ax: Axes, tail: complex, head: complex, colour: str, style: str, widt
                             "shrinkA": 0, "shrinkB": 0, "mutation_scale": 12}, zorder=zorder)
 
 
+class _Placer:
+    """Places the letters of a plan where they cover no other letter, no vertex and as little line as can be.
+
+    Sizes are in mm of the drawing: each text is measured as drawn (its box included), and every candidate
+    position is scored by its overlap with the letters already placed, the vertices, the vectors' lines
+    and the edge of the axes; the candidate with the lowest score wins.
+    """
+
+    def __init__(self, ax: Axes, dots: list[complex], segments: list[tuple[complex, complex]]):
+        self.ax, self.dots, self.segments = ax, dots, segments
+        ax.apply_aspect()
+        width = ax.get_window_extent().width
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        self.mm_per_pixel = (x1 - x0) / width if width > 0 else 1.0
+        self.limits = (x0, x1, y0, y1)
+        self.boxes: list[tuple[float, float, float, float]] = []
+        self.dot = 1.2 * self.mm_per_pixel * ax.figure.dpi / 72 * 3.5 / 2    # a vertex dot's radius and a bit
+
+    def half_size(self, text: Any) -> tuple[float, float]:
+        box = text.get_window_extent()
+        pad = 0.25 * text.get_fontsize() * self.ax.figure.dpi / 72      # the white box's padding, and a gap
+        return ((box.width / 2 + pad) * self.mm_per_pixel, (box.height / 2 + pad) * self.mm_per_pixel)
+
+    def cost(self, centre: complex, half: tuple[float, float], skip: int | None = None) -> float:
+        hw, hh = half
+        left, right, bottom, top = centre.real - hw, centre.real + hw, centre.imag - hh, centre.imag + hh
+        area = 4 * hw * hh
+        total = 0.0
+        for l2, r2, b2, t2 in self.boxes:          # letters already placed: never on each other
+            overlap = max(0.0, min(right, r2) - max(left, l2)) * max(0.0, min(top, t2) - max(bottom, b2))
+            total += 200.0 * overlap / area
+        for dot in self.dots:                      # vertices stay visible
+            dx = max(left - dot.real, 0.0, dot.real - right)
+            dy = max(bottom - dot.imag, 0.0, dot.imag - top)
+            if np.hypot(dx, dy) < self.dot:
+                total += 60.0
+        for k, (a, b) in enumerate(self.segments):  # lines under a letter: the length covered
+            if k == skip:
+                continue
+            t = np.linspace(0.0, 1.0, 41)
+            z = a + t * (b - a)
+            inside = (z.real > left) & (z.real < right) & (z.imag > bottom) & (z.imag < top)
+            total += 3.0 * inside.mean() * abs(b - a) / hh
+        x0, x1, y0, y1 = self.limits               # inside the axes
+        outside = max(0.0, x0 - left) + max(0.0, right - x1) + max(0.0, y0 - bottom) + max(0.0, top - y1)
+        return total + 50.0 * outside / hh
+
+    def place(self, text: Any, candidates: list[tuple[complex, float]], skip: int | None = None,
+              optional: bool = False) -> None:
+        """Move ``text`` to the best of the candidate centres (each with its own penalty).
+
+        An ``optional`` text (a vector's name) that would cover a letter or a vertex wherever it went
+        is removed instead.
+        """
+        half = self.half_size(text)
+        best, score = min(((c, self.cost(c, half, skip) + p) for c, p in candidates), key=lambda cs: cs[1])
+        if optional and score >= 50.0:
+            text.remove()
+            return
+        text.set_position((best.real, best.imag))
+        self.boxes.append((best.real - half[0], best.real + half[0], best.imag - half[1], best.imag + half[1]))
+
+    def around(self, text: Any, point: complex, away: complex) -> list[tuple[complex, float]]:
+        """Candidate centres for a vertex's letter: all round the vertex, clear of its dot; ``away`` preferred."""
+        hw, hh = self.half_size(text)
+        out = []
+        for angle in np.radians(np.arange(0.0, 360.0, 15.0)):
+            u = complex(np.cos(angle), np.sin(angle))
+            reach = min(hw / max(abs(u.real), 1e-9), hh / max(abs(u.imag), 1e-9)) + self.dot
+            for extra in (0.0, 0.6, 1.2):
+                preference = 0.6 * (1.0 - (u * away.conjugate()).real) + 1.5 * extra
+                out.append((point + (reach + extra * hh) * u, preference))
+        return out
+
+    def beside(self, text: Any, tail: complex, head: complex) -> list[tuple[complex, float]]:
+        """Candidate centres for a vector's name: beside it, near its middle, the left side preferred."""
+        hw, hh = self.half_size(text)
+        along = (head - tail) / abs(head - tail)
+        normal = 1j * along
+        clear = hw * abs(normal.real) + hh * abs(normal.imag) + 0.3 * hh
+        out = []
+        for fraction in (0.5, 0.4, 0.6, 0.3, 0.7):
+            for side in (1.0, -1.0):
+                for extra in (0.0, 0.8, 1.6):
+                    preference = 2.0 * abs(fraction - 0.5) + (0.0 if side > 0 else 0.3) + 1.5 * extra
+                    out.append((tail + fraction * (head - tail) + side * (clear + extra * hh) * normal, preference))
+        return out
+
+
 def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bool = True, title: str | None = None,
               label_offset: float = 3.5) -> Axes:
-    """Draw a velocity or acceleration plan to scale, in mm of the drawing.
+    r"""Draw a velocity or acceleration plan to scale, in mm of the drawing.
 
     Parameters
     ----------
@@ -60,19 +191,27 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
     ax : matplotlib Axes, optional
         Where to draw; a new figure if omitted.
     names : bool
-        Write the names of the relative vectors and components beside them (``v_BA``, ``a^n_BA`` …),
+        Write the names of the relative vectors and components beside them ($v_{BA}$, $a^n_{BA}$ …),
         except on vectors too short to carry one.
     images : bool
         Shade the image of every link that has three or more points on the plan.
     title : str, optional
         The title; by default "velocity plan" or "acceleration plan" with the crank angle.
     label_offset : float
-        Distance of the vertex letters from their vertices (mm of the drawing).
+        Spacing of the letters (mm of the drawing): vertices closer than 0.8 of it share one letter
+        ("$b'$, $n_4$"), and vectors shorter than three times it carry no name.
 
     Returns
     -------
     matplotlib Axes
         Axes in mm, equal aspect, with the scale stated in the lower right corner.
+
+    Notes
+    -----
+    The letters are the book's (chapter 10) in mathtext: $p$, $a$, $s_2$ on a velocity plan, $\pi$,
+    $a'$, $n_2$, $k$ on an acceleration plan. Each letter is placed where it covers no other letter
+    and no vertex and as little of the vectors as possible, preferably away from the plan's middle
+    (the pole's) or on the left of its vector (a vector's name).
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(5.0, 5.0))
@@ -84,6 +223,8 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
             if len(corners) >= 3:
                 ax.add_patch(Polygon([(c.real, c.imag) for c in corners], closed=True, zorder=1, alpha=0.15,
                                      facecolor=ROLE_COLOURS[LINK_ROLES.get(link, "coupler")], edgecolor="none"))
+    segments: list[tuple[complex, complex]] = []
+    named = []
     for vector in plan.vectors:
         tail, head = drawn[vector.tail], drawn[vector.head]
         if abs(head - tail) < 1e-9:
@@ -91,44 +232,55 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         style, width = _STYLE[vector.kind]
         shade = colour if vector.kind == "absolute" else ROLE_COLOURS[LINK_ROLES.get(vector.link, "coupler")]
         _arrow(ax, tail, head, shade, style, width, 4 if vector.kind == "absolute" else 3)
+        segments.append((tail, head))
         if names and vector.kind != "absolute" and abs(head - tail) >= 3.0 * label_offset:
-            middle = 0.5 * (tail + head)
-            side = 1j * (head - tail) / abs(head - tail) * 0.9 * label_offset
-            ax.text((middle + side).real, (middle + side).imag, f"${vector.latex}$", fontsize=9, color=shade,
-                    ha="center", va="center", zorder=5, bbox=_LABEL_BOX)
-    # the vertices and their letters, away from the pole (the pole's away from the plan's centre);
-    # vertices closer than the letters' size share one label, "a, b"
-    groups: list[list[str]] = []
-    for label, point in drawn.items():
-        for group in groups:
-            if abs(drawn[group[0]] - point) < 0.8 * label_offset:
-                group.append(label)
-                break
-        else:
-            groups.append([label])
-    centre = complex(np.mean(list(drawn.values())))
-    for group in groups:
-        point = complex(np.mean([drawn[label] for label in group]))
-        away = point - centre if plan.pole in group else point
-        away = away / abs(away) if abs(away) > 1e-9 else 1j
-        for label in group:
-            ax.plot(drawn[label].real, drawn[label].imag, "o", ms=3.5, color="black", zorder=6)
-        text = point + (label_offset + 1.2 * (len(group) - 1)) * away
-        ax.text(text.real, text.imag, ", ".join(group), fontsize=11, ha="center", va="center", zorder=6,
-                style="normal" if plan.pole in group else "italic", bbox=_LABEL_BOX)
+            named.append((len(segments) - 1, vector, shade))
     values = np.array(list(drawn.values()))
     span = max(np.ptp(values.real), np.ptp(values.imag), 10.0)
     margin = 0.12 * span + label_offset
     ax.set_xlim(values.real.min() - margin, values.real.max() + margin)
     ax.set_ylim(values.imag.min() - margin, values.imag.max() + margin)
     ax.set_aspect("equal")
+    # the vertices; vertices closer than the letters' size share one label, "a, b"
+    groups: list[list[str]] = []
+    for label, point in drawn.items():
+        ax.plot(point.real, point.imag, "o", ms=3.5, color="black", zorder=6)
+        for group in groups:
+            if abs(drawn[group[0]] - point) < 0.8 * label_offset:
+                group.append(label)
+                break
+        else:
+            groups.append([label])
+    symbol = r"$\mu_v$" if plan.quantity == "velocity" else r"$\mu_a$"
+    scale = ax.text(0.98, 0.02, f"{symbol} = {plan.scale:g} ({plan.unit})/mm", transform=ax.transAxes,
+                    ha="right", va="bottom", fontsize=9,
+                    bbox={"facecolor": "white", "edgecolor": "0.7", "boxstyle": "round"})
+    placer = _Placer(ax, [complex(v) for v in values], segments)
+    corner = scale.get_window_extent().transformed(ax.transData.inverted())   # no letter on the scale
+    placer.boxes.append((corner.x0 - 1.0, corner.x1 + 1.0, corner.y0 - 1.0, corner.y1 + 1.0))
+    centre = complex(np.mean(values))
+    where = {tuple(group): complex(np.mean([drawn[label] for label in group])) for group in groups}
+
+    def crowding(group: list[str]) -> float:     # the most crowded letters choose first
+        others = [abs(where[tuple(group)] - z) for g, z in where.items() if g != tuple(group)]
+        return min(others, default=np.inf)
+
+    for group in sorted(groups, key=crowding):
+        point = where[tuple(group)]
+        away = point - centre if plan.pole in group else point
+        away = away / abs(away) if abs(away) > 1e-9 else 1j
+        text = ax.text(point.real, point.imag, ", ".join(vertex_label(label) for label in group), fontsize=11,
+                       ha="center", va="center", zorder=7, bbox=_LABEL_BOX)
+        placer.place(text, placer.around(text, point, away))
+    for index, vector, shade in named:
+        tail, head = drawn[vector.tail], drawn[vector.head]
+        text = ax.text(0.0, 0.0, vector_label(vector.latex), fontsize=9, color=shade, ha="center", va="center",
+                       zorder=5, bbox=_LABEL_BOX)
+        placer.place(text, placer.beside(text, tail, head), skip=index, optional=True)
     ax.set_xlabel("mm of the drawing")
     ax.set_ylabel("mm of the drawing")
-    symbol = r"$\mu_v$" if plan.quantity == "velocity" else r"$\mu_a$"
-    ax.text(0.98, 0.02, f"{symbol} = {plan.scale:g} ({plan.unit})/mm", transform=ax.transAxes, ha="right",
-            va="bottom", fontsize=9, bbox={"facecolor": "white", "edgecolor": "0.7", "boxstyle": "round"})
     what = "velocity plan" if plan.quantity == "velocity" else "acceleration plan"
-    ax.set_title(title if title is not None else f"{what}, φ = {np.degrees(plan.phi) % 360:.4g}°")
+    ax.set_title(title if title is not None else rf"{what}, $\varphi$ = {np.degrees(plan.phi) % 360:.4g}°")
     return ax
 
 
@@ -151,8 +303,9 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     for name, position in velocity.positions.items():
         if name not in solution.point_names and name != "A3":
             axes[0].plot(position.real, position.imag, "o", ms=4, color=ROLE_COLOURS["point"], zorder=5)
-            axes[0].annotate(name, (position.real, position.imag), xytext=(5, -12), textcoords="offset points")
-    axes[0].set_title(f"the mechanism at φ = {np.degrees(velocity.phi) % 360:.4g}°")
+            axes[0].annotate(re.sub(r"^(\D+)(\d+)$", r"$\\mathrm{\1}_{\2}$", name), (position.real, position.imag),
+                             xytext=(5, -12), textcoords="offset points")
+    axes[0].set_title(rf"the mechanism at $\varphi$ = {np.degrees(velocity.phi) % 360:.4g}°")
     draw_plan(velocity, ax=axes[1], title="velocity plan")
     if acceleration is not None:
         draw_plan(acceleration, ax=axes[2], title="acceleration plan")
