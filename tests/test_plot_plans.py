@@ -86,6 +86,8 @@ def test_letters_in_the_book_s_notation():
     assert plot_plans.vertex_label("n4") == "$n_{4}$"
     assert plot_plans.vector_label("a^{k}_{A3A2}") == "$a^{k}_{A_{3}A_{2}}$"
     assert plot_plans.vector_label("v_{BA}") == "$v_{BA}$"
+    assert plot_plans.segment_label("n2", "b′") == "$n_{2}b'$"
+    assert plot_plans.segment_label("π", "a′") == r"$\pi a'$"
 
 
 @pytest.mark.parametrize("case", ["shaper", "crank-slider", "slotted lever", "four-bar"])

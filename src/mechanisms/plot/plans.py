@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["LINK_ROLES", "draw_plan", "draw_plans", "draw_instant_centres", "draw_centre_velocities",
-           "vertex_label", "vector_label"]
+           "vertex_label", "segment_label", "vector_label"]
 
 LINK_ROLES = {"crank": "crank", "coupler": "coupler", "rocker": "rocker", "lever": "lever", "slider": "slider",
               "rod": "coupler"}
@@ -67,6 +67,23 @@ def vertex_label(label: str) -> str:
     letter, digits, primes = match.groups()
     letter = r"\pi" if letter == "π" else letter
     return f"${letter}{f'_{{{digits}}}' if digits else ''}{chr(39) * len(primes)}$"
+
+
+def segment_label(tail: str, head: str) -> str:
+    r"""A segment of a plan between two vertices in mathtext: ``("n2", "b′")`` → ``$n_{2}b'$``.
+
+    Parameters
+    ----------
+    tail, head : str
+        The vertices as the plans name them (see :func:`vertex_label`).
+
+    Returns
+    -------
+    str
+        The segment in math mode, as the book writes it ($pa$, $n_2b'$, $\pi a'$; chapter 10).
+    """
+    tail_math, head_math = vertex_label(tail).strip("$"), vertex_label(head).strip("$")
+    return f"${tail_math}{' ' if tail_math.startswith(chr(92)) else ''}{head_math}$"
 
 
 def vector_label(latex: str) -> str:
