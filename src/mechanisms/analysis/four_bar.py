@@ -133,9 +133,9 @@ def limit_positions(mechanism: FourBar) -> LimitPositions:
     The rocker turns back where ξ_t = 0, that is sin(ψ − φ) = 0: crank and coupler in line.
     Then |OB| = L2 + L1 (extended) or |L2 − L1| (folded), and B is an intersection of the circle
     of that radius about O with the circle of radius L3 about C; of the two intersections the
-    one on the mechanism's branch is kept. These are also the dead centres of the linkage when
-    the rocker drives. The time ratio is K = (π + θ)/(π − θ), θ the crank angle between the two
-    positions less π.
+    one on the mechanism's branch is kept. When the rocker drives instead, the same positions are
+    singular (toggle) positions: the crank cannot be driven through them. The time ratio is
+    K = (π + θ_K)/(π − θ_K), θ_K the crank angle between the two positions less π.
     """
     if grashof_class(*mechanism.lengths).name != "crank-rocker":
         raise AssemblyError("limit positions of the rocker are defined here for a crank-rocker (shortest link "
@@ -231,7 +231,7 @@ def coupler_curve(mechanism: FourBar, along: float, left: float = 0.0, positions
     Parameters
     ----------
     along, left : float
-        The point's coordinates on the coupler: u (m) along A → B, v (m) to its left.
+        The point's coordinates on the coupler: u (m) along A → B, w (m) to its left.
     positions : int
         Number of crank positions over the range (a full turn, or each assembly interval).
 
