@@ -21,3 +21,14 @@ def test_every_mechanism_of_the_book_has_one_degree_of_freedom():
 def test_bad_counts(args):
     with pytest.raises(InvalidParameterError):
         mobility(*args)
+
+
+def test_report_names_the_criterion_as_the_book_does():
+    # the book (chapters 2, 3 and 6) writes "Kutzbach–Grübler"; the Watt six-bar is n = 5, p₁ = 7
+    # (chapter 6, counted by hand: 15 − 14 = 1)
+    from mechanisms import load_linkage
+    from mechanisms.analysis.structure import structure_of
+
+    text = structure_of(load_linkage("watt-six-bar")).text()
+    assert "(Kutzbach–Grübler): W = 3n − 2p₁ − p₂ = 3·5 − 2·7 − 0 = 1" in text
+    assert "Chebyshev–Grübler" not in text

@@ -113,3 +113,38 @@ def test_figures_are_stored_as_palette_pngs_that_look_the_same():
     # the same picture: almost every pixel within a few levels, none far off in a flat colour
     assert np.mean(difference.max(axis=2) <= 24) > 0.99
     plt.close("all")
+
+
+def test_guides_carried_by_moving_links_are_drawn_with_them():
+    from mechanisms.linkages.groups import PRP, Crank, Line
+
+    # a slot across the crank at its pin A (0.1 m along it, at 90° to it) and a fixed guide x = 0.2 m:
+    # at φ = 30° the slot is the line through A = 0.1·e^{i30°} in the direction 120° (by hand)
+    slotted = mech.Linkage({"O": 0}, [Crank("O", "A", length=0.1),
+                                      PRP("K", Line("crank", 0.1 + 0j, np.pi / 2), Line("frame", 0.2 + 0j, np.pi / 2),
+                                          "K1", "K2")])
+    sol = slotted.solve(np.radians([30.0]), order=0)
+    ((link, through, angle, blocks),) = plot.moving_guides(slotted, sol)
+    assert link == "crank" and blocks == ["K"]
+    np.testing.assert_allclose(through, 0.1 * np.exp(1j * np.pi / 6), atol=1e-15)
+    np.testing.assert_allclose(angle, np.radians(120.0), atol=1e-15)
+    ax = plot.draw(slotted, sol, label_offset={"O": (-12.0, 3.0)})
+    slot = [ln for ln in ax.lines if ln.get_color() == plot.ROLE_COLOURS["crank"] and ln.get_linewidth() < 2]
+    assert len(slot) == 1                          # the slot, thin, in the crank's colour
+    x, y = slot[0].get_xdata(), slot[0].get_ydata()
+    k = complex(sol.point("K").value[0])
+    assert min(x) < k.real < max(x) and min(y) < k.imag < max(y)   # it reaches past the block K
+    offsets = {t.get_text(): t.xyann for t in ax.texts}
+    assert offsets["O"] == (-12.0, 3.0) and offsets["A"] == (5.0, 5.0)
+    plt.close("all")
+
+
+def test_the_yokes_slot_is_drawn_and_fixed_guides_stay_in_the_scheme():
+    # the Scotch yoke's slot is carried by the yoke, at 90° to the fixed guide (its file); the book's
+    # mechanism classes carry no moving guide, so their drawings are unchanged
+    yoke = mech.load_linkage("scotch-yoke")
+    ((link, through, angle, blocks),) = plot.moving_guides(yoke, yoke.solve([0.5], order=0))
+    assert (link, blocks) == ("yoke", ["A"])
+    np.testing.assert_allclose([through, angle], [0.1 * np.cos(0.5), np.pi / 2], atol=1e-15)
+    crank_slider = mech.CrankSlider.example()
+    assert plot.moving_guides(crank_slider, crank_slider.solve([0.5], order=0)) == []

@@ -13,7 +13,7 @@ __all__ = ["mobility", "Structure", "BOOK_STRUCTURES", "StructureReport", "Group
 
 
 def mobility(moving_links: int, lower_pairs: int, higher_pairs: int = 0) -> int:
-    """Degrees of freedom W of a planar linkage by the structural (Chebyshev–Grübler) formula.
+    """Degrees of freedom W of a planar linkage by the structural (Kutzbach–Grübler) formula.
 
     Parameters
     ----------
@@ -28,6 +28,11 @@ def mobility(moving_links: int, lower_pairs: int, higher_pairs: int = 0) -> int:
     -------
     int
         ``W = 3n − 2 p1 − p2``.
+
+    Notes
+    -----
+    The Kutzbach–Grübler criterion of the English-language books, Chebyshev's structural formula
+    of the Russian ones (chapters 2 and 6): W = 3n − 2p₁ − p₂.
     """
     for name, value in (("moving_links", moving_links), ("lower_pairs", lower_pairs),
                         ("higher_pairs", higher_pairs)):
@@ -121,7 +126,7 @@ class StructureReport:
                       f"{self.lower_pairs - hinges} sliding pairs P), no higher pairs"]
         lines += [f"  {kind}  {first} – {second}" + (f" at {joint}" if kind == "R" else f" (block at {joint})")
                   for kind, first, second, joint in self.pairs]
-        lines += ["", "Degrees of freedom (Chebyshev–Grübler): W = 3n − 2p₁ − p₂ = "
+        lines += ["", "Degrees of freedom (Kutzbach–Grübler): W = 3n − 2p₁ − p₂ = "
                       f"3·{self.moving_links} − 2·{self.lower_pairs} − 0 = {self.mobility}", "",
                   "Groups in the order they are solved:"]
         for g in self.groups:

@@ -7,7 +7,7 @@ lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors 
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import matplotlib
 
@@ -16,6 +16,7 @@ import numpy as np
 from matplotlib.patches import Polygon, Rectangle
 
 from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
+from ..linkages.groups import PRP, RPP, RRP, Line
 from ..core.errors import InvalidParameterError
 from ..core.motion import PointMotion
 from ..present.colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
@@ -32,6 +33,7 @@ __all__ = [
     "ACCELERATION_COLOUR",
     "use_book_style",
     "draw",
+    "moving_guides",
     "trajectories",
     "vectors_along",
     "diagram",
@@ -106,6 +108,72 @@ def _block_symbol(ax: Axes, centre: complex, angle: float, size: float) -> None:
                          edgecolor=ROLE_COLOURS["slider"], lw=1.5, zorder=3))
 
 
+def _line_at(mechanism: Mechanism, solution: Solution, line: Line, index: int) -> tuple[complex, float] | None:
+    """Where a line carried by a moving link is at one position: a point of it (m) and its direction (rad).
+
+    ``None`` for a line of the frame (drawn as a fixed :class:`Guide`) or of a link that the
+    mechanism does not place by its first joint.
+    """
+    if line.link == "frame" or line.link not in mechanism.links:
+        return None
+    local = complex(line.point)
+    point = complex(solution.point_on(line.link, local.real, local.imag).value[index])
+    return point, float(solution.angle(line.link).value[index]) + line.angle
+
+
+def moving_guides(mechanism: Mechanism, solution: Solution, index: int = 0) -> list[tuple[str, complex, float,
+                                                                                           list[str]]]:
+    """The guides and slots carried by moving links, at one crank position.
+
+    A guide on the frame is part of the mechanism's scheme (a hatched :class:`Guide`); a guide
+    carried by a moving link turns and travels with it: the slot across a crank of a PRP group,
+    the slot of a lever of an RRP group, the yoke's slot of an RPP group (the Scotch yoke).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism that describes its structure (:meth:`~mechanisms.linkages.base.Mechanism.groups`).
+    solution : Solution
+        Its positions.
+    index : int
+        Which crank position.
+
+    Returns
+    -------
+    list of (str, complex, float, list of str)
+        For each moving guide: the link that carries it, a point of it (m), its direction (rad)
+        and the joints of the blocks that slide on it.
+    """
+    guides: list[tuple[str, complex, float, list[str]]] = []
+    for group in mechanism.groups():
+        carried: list[tuple[Line, str]] = []
+        if isinstance(group, RRP):
+            carried = [(group.guide, group.joint)]
+        elif isinstance(group, PRP):
+            carried = [(group.first_guide, group.joint), (group.second_guide, group.joint)]
+        elif isinstance(group, RPP):
+            carried = [(group.guide, group.joint)]
+            where = _line_at(mechanism, solution, group.guide, index)
+            guide_angle = group.guide.angle if where is None else where[1]
+            guides.append((group.yoke, complex(solution.point(group.joint).value[index]),
+                           guide_angle + group.slot_angle, [group.block]))
+        for line, joint in carried:
+            placed = _line_at(mechanism, solution, line, index)
+            if placed is not None:
+                guides.append((line.link, placed[0], placed[1], [joint]))
+    return guides
+
+
+def _moving_guide_symbol(ax: Axes, through: complex, angle: float, blocks: list[complex], colour: str,
+                         margin: float) -> None:
+    """A guide carried by a link: a line in the link's colour from ``through`` past its blocks, ``margin`` beyond."""
+    direction = np.exp(1j * angle)
+    along = [0.0] + [((b - through) * np.conj(direction)).real for b in blocks]
+    a, b = through + (min(along) - margin) * direction, through + (max(along) + margin) * direction
+    ax.plot([a.real, b.real], [a.imag, b.imag], color=colour, lw=1.6, solid_capstyle="butt", zorder=1.5,
+            label="_nolegend_")
+
+
 def _extent(solution: Solution) -> float:
     points = np.concatenate([np.ravel(solution.point(n).value) for n in solution.point_names])
     span = np.ptp(points.real) + np.ptp(points.imag) if points.size else 1.0
@@ -114,8 +182,12 @@ def _extent(solution: Solution) -> float:
 
 def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | None = None, labels: bool = True,
          size: float | None = None, guide_half_length: float | None = None,
-         label_offset: tuple[float, float] = (5.0, 5.0)) -> Axes:
+         label_offset: tuple[float, float] | Mapping[str, tuple[float, float]] = (5.0, 5.0)) -> Axes:
     """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
+
+    A guide fixed to the frame is drawn hatched; a guide or slot carried by a moving link
+    (:func:`moving_guides`) is drawn as a line in that link's colour, through the blocks that
+    slide on it.
 
     Parameters
     ----------
@@ -131,8 +203,9 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
         Write the joint names next to the joints.
     size : float, optional
         Size of hinges and symbols (m); by default 3 % of the mechanism's extent.
-    label_offset : (float, float)
-        Where the joint names sit relative to their joints, in points.
+    label_offset : (float, float) or dict
+        Where the joint names sit relative to their joints, in points; a dict ``{joint: (dx, dy)}``
+        moves the names it lists and leaves the others at (5, 5).
 
     Returns
     -------
@@ -143,12 +216,14 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
     where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
     guide_half_length = guide_half_length or 0.6 * _extent(solution)
     artists: list[Any] = []
+    roles: dict[str, str] = {}
     for item in mechanism.scheme():
         if isinstance(item, Guide):
             _guide_symbol(ax, item.through, item.angle, guide_half_length, size)
         elif isinstance(item, Ground):
             _pivot_symbol(ax, where[item.joint], size)
         elif isinstance(item, Bar):
+            roles[item.link] = item.role
             pts = [where[j] for j in item.joints]
             artists += ax.plot([p.real for p in pts], [p.imag for p in pts], color=ROLE_COLOURS.get(item.role, "k"),
                                lw=3.0, solid_capstyle="round", zorder=2, label="_nolegend_", gid=item.link)
@@ -156,12 +231,17 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
             angle = item.angle if isinstance(item.angle, (int, float)) else float(
                 solution.angle(item.angle).value[index])
             _block_symbol(ax, where[item.joint], angle, size)
+    for link, through, angle, blocks in moving_guides(mechanism, solution, index):
+        _moving_guide_symbol(ax, through, angle, [where[b] for b in blocks],
+                             ROLE_COLOURS.get(roles.get(link, "slider"), "k"), 2.5 * size)
     hinges = np.array(list(where.values()))
     ax.plot(hinges.real, hinges.imag, "o", ms=6, mfc="white", mec="black", mew=1.2, zorder=4)
     if labels:
+        offsets = dict(label_offset) if isinstance(label_offset, Mapping) else {}
+        default = (5.0, 5.0) if isinstance(label_offset, Mapping) else label_offset
         for name, p in where.items():
-            ax.annotate(name, (p.real, p.imag), xytext=label_offset, textcoords="offset points", fontsize=10,
-                        zorder=5)
+            ax.annotate(name, (p.real, p.imag), xytext=offsets.get(name, default), textcoords="offset points",
+                        fontsize=10, zorder=5)
     ax.set_xlabel("x, m")
     ax.set_ylabel("y, m")
     return ax
