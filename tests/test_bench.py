@@ -153,3 +153,32 @@ def test_reference_fields_are_named_and_unpack_as_a_triple():
     q, q_t, q_tt = ref
     assert ref.q is q and ref.q_t is q_t and ref.q_tt is q_tt
     assert ref.q.shape == (2, 1) and ref.q.dtype == np.longdouble
+
+
+@pytest.mark.parametrize("name", ["four-bar", "crank-slider"])
+def test_central_differences_solve_once_per_shifted_angle(name, monkeypatch):
+    # Numerical differentiation is charged what a program pays: one solution of all coordinates
+    # at φ + h and one at φ − h (and one at φ for accelerations), not one per coordinate.
+    mechanism = bench.benchmark_mechanisms()[name]
+    phi = np.radians(np.arange(0.0, 360.0, 15.0))
+    angles = tuple(isinstance(c, mech.core.motion.AngleMotion)
+                   for c in mechanism.coordinates(mechanism.solve(phi, order=0)))
+    solve, calls = type(mechanism).solve, []
+
+    def counted(self, *args, **kwargs):
+        calls.append(1)
+        return solve(self, *args, **kwargs)
+
+    for derivative, solutions in ((1, 2), (2, 3)):
+        monkeypatch.setattr(type(mechanism), "solve", counted)
+        calls.clear()
+        values = bench.benchmark._central_differences(mechanism, phi, 1e-4, derivative, angles)
+        monkeypatch.undo()
+        assert len(calls) == solutions
+        # expected: the package's central_difference applied to each coordinate on its own
+        for row, angle in enumerate(angles):
+            def coordinate(a, row=row):
+                return mechanism.coordinates(mechanism.solve(a, order=0))[row].value
+            alone = mech.verify.central_difference(coordinate, phi, 1.0, 1e-4, derivative,
+                                                   angle=angle)
+            assert np.array_equal(values[row], alone)

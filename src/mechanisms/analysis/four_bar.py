@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 from .assignments import Quantity, Task, crank_speed, register_assignment, round_mm
 from ..core.angles import wrap_angle
 from ..linkages.base import Solution
-from ..core.errors import AssemblyError
+from ..core.errors import AssemblyError, InvalidParameterError
 from ..core.validate import require_length
 from ..linkages.four_bar import FourBar, _pqf
 from ..core.motion import PointMotion
@@ -32,6 +32,7 @@ __all__ = [
     "transmission_angle",
     "transmission_extremes",
     "half_angle_terms",
+    "half_angle_denominator_root",
     "coupler_curve",
     "StraightPart",
     "best_line",
@@ -223,6 +224,54 @@ def half_angle_terms(phi: ArrayLike, crank: float, coupler: float, rocker: float
     chapter 9 finds the root of.
     """
     return _pqf(phi, crank, coupler, rocker, frame)
+
+
+def half_angle_denominator_root(low: float, high: float, crank: float, coupler: float, rocker: float,
+                                frame: tuple[float, float]) -> float:
+    """The crank angle between two others where the half-angle formula's denominator 𝒫 + ℱ is zero.
+
+    Parameters
+    ----------
+    low, high : float
+        Crank angles φ (rad) at which 𝒫 + ℱ has opposite signs.
+    crank, coupler, rocker : float
+        L1, L2, L3 (m).
+    frame : tuple of float
+        The rocker pivot C = (x_C, y_C) (m).
+
+    Returns
+    -------
+    float
+        The root φ (rad), to the last bit of double precision: the end of the final bracket at which
+        𝒫 + ℱ has the sign it has at ``low``.
+
+    Raises
+    ------
+    InvalidParameterError
+        If 𝒫 + ℱ has the same sign at ``low`` and ``high``.
+
+    Notes
+    -----
+    Bisection of [low, high] with :func:`half_angle_terms` (𝒫, 𝒬, ℱ of chapters 2 and 4): each step
+    halves the bracket, keeping the half whose ends have opposite signs, until its midpoint equals one
+    of its ends. Chapter 9 measures the half-angle formula's error near this root.
+    """
+    def denominator(angle: float) -> float:
+        p, _, f = half_angle_terms(np.array([angle]), crank, coupler, rocker, frame)
+        return float((p + f)[0])
+
+    sign = math.copysign(1.0, denominator(low))
+    if sign * denominator(high) > 0:
+        raise InvalidParameterError("high", high, f"a crank angle (rad) at which P + F has the other sign "
+                                    f"than at low = {low} rad")
+    while True:
+        middle = 0.5 * (low + high)
+        if middle in (low, high):
+            return low
+        if sign * denominator(middle) > 0:
+            low = middle
+        else:
+            high = middle
 
 
 def coupler_curve(mechanism: FourBar, along: float, left: float = 0.0, positions: int = 361) -> PointMotion:

@@ -311,9 +311,7 @@ def _bench_mechanism(name: str, mechanism: Mechanism, n: int, repeat: int) -> li
     for order in (1, 2):
         for h in DIFFERENCE_STEPS:
             def difference():
-                return np.array([central_difference(_row_function(mechanism, k), phi, OMEGA, h,
-                                                    order, angle=angle)
-                                 for k, angle in enumerate(angle_rows)])
+                return _central_differences(mechanism, phi, h, order, angle_rows)
             seconds = best_time(difference, repeat)
             values = difference()[:, sample]
             error = max(float(np.max(np.abs(values[row] - ref[order][row]))) for row in range(len(angle_rows)))
@@ -321,17 +319,27 @@ def _bench_mechanism(name: str, mechanism: Mechanism, n: int, repeat: int) -> li
     return results
 
 
-def _position_row(mechanism: Mechanism, phi: np.ndarray, row: int) -> np.ndarray:
-    """One coordinate of the closed form at order 0 (a fresh solve: what a finite difference pays)."""
-    coords = mechanism.coordinates(mechanism.solve(phi, OMEGA, order=0))
-    return coords[row].value
+def _central_differences(mechanism: Mechanism, phi: np.ndarray, step: float, derivative: int,
+                         angle_rows: Sequence[bool]) -> np.ndarray:
+    """Central differences of every coordinate, shape (k, n): velocities or accelerations.
 
+    Each shifted crank angle is solved once for all k coordinates, as a program would: velocities
+    cost two solutions of positions (at φ ± h), accelerations three (also at φ). Each row is
+    :func:`~mechanisms.verify.central_difference` of its coordinate (angles wrapped).
+    """
+    solved: dict[int, np.ndarray] = {}     # −1, 0, +1: the solution at φ − h, φ, φ + h
 
-def _row_function(mechanism: Mechanism, row: int) -> Callable[[np.ndarray], np.ndarray]:
-    """``φ ↦`` one coordinate of the closed form, for numerical differentiation."""
-    def position(phi: np.ndarray) -> np.ndarray:
-        return _position_row(mechanism, phi, row)
-    return position
+    def row_function(row: int) -> Callable[[np.ndarray], np.ndarray]:
+        def position(shifted: np.ndarray) -> np.ndarray:
+            side = round(float(shifted.flat[0] - phi.flat[0]) / step)
+            if side not in solved:
+                coords = mechanism.coordinates(mechanism.solve(shifted, OMEGA, order=0))
+                solved[side] = np.array([c.value for c in coords])
+            return solved[side][row]
+        return position
+
+    return np.array([central_difference(row_function(row), phi, OMEGA, step, derivative, angle=angle)
+                     for row, angle in enumerate(angle_rows)])
 
 
 # --- peers ------------------------------------------------------------------------------------------
@@ -513,7 +521,8 @@ def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
     list of dict
         ``{"method", "parameter", "quantity", "ns_per_position", "error"}``. Each method is timed
         at the order its quantity needs (positions: order 0 …); a central difference is charged the
-        closed-form positions it differentiates.
+        closed-form positions it differentiates, one solution for all coordinates per shifted crank
+        angle: two (φ ± h) for velocities, three (φ ± h and φ) for accelerations.
     """
     phi = np.arange(n) * (2.0 * math.pi / n)
     ref = reference(mechanism, phi)
@@ -540,12 +549,11 @@ def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
     for k in (1, 2):
         for h in steps:
             def difference():
-                return [central_difference(_row_function(mechanism, r), phi, OMEGA, h, k,
-                                           angle=angles[r]) for r in range(2)]
+                return _central_differences(mechanism, phi, h, k, angles)
             seconds = best_time(difference, repeat)
             values = difference()
             add("central difference", h, k, seconds,
-                max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(2)))
+                max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(len(angles))))
     return rows
 
 
@@ -562,9 +570,8 @@ def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> d
     for k, name in ((1, "velocities"), (2, "accelerations")):
         errors = []
         for h in steps:
-            values = [central_difference(_row_function(mechanism, r), phi, OMEGA, h, k,
-                                         angle=angles[r]) for r in range(2)]
-            errors.append(max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(2)))
+            values = _central_differences(mechanism, phi, h, k, angles)
+            errors.append(max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(len(angles))))
         out[name] = np.array(errors)
     return out
 
