@@ -351,7 +351,7 @@ def build_parser() -> argparse.ArgumentParser:
     structure = commands.add_parser(
         "structure", help="structural analysis of a linkage file: links, pairs, degrees of freedom, Assur groups",
         description="Print the links, the kinematic pairs, the degrees of freedom by the structural "
-                    "(Chebyshev–Grübler) formula and the Assur groups in the order they are solved.",
+                    "(Kutzbach–Grübler) formula and the Assur groups in the order they are solved.",
         epilog=FORMAT_SUMMARY, formatter_class=argparse.RawDescriptionHelpFormatter)
     structure.add_argument("path", metavar="FILE.toml", help="the linkage file, or the name of a shipped example")
     structure.add_argument("--format", choices=("text", "json"), default="text")
