@@ -61,6 +61,7 @@ __all__ = [
     "DEFAULT_SIZES",
     "NEWTON_TOLERANCES",
     "DIFFERENCE_STEPS",
+    "CHECK_STEPS",
     "RESULT_KEYS",
 ]
 
@@ -670,43 +671,63 @@ def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=N
         roundoff = (1 if power == 1 else 4) * eps / h**power
         ax.loglog(h, truncation, ":", color=colour, lw=1)
         ax.loglog(h, roundoff, "--", color=colour, lw=1)
-    ax.plot([], [], "k:", lw=1, label="truncation ∝ h²")
-    ax.plot([], [], "k--", lw=1, label="round-off ∝ ε/h, ε/h²")
+    ax.plot([], [], "k:", lw=1, label=r"truncation $\propto h^2$")
+    ax.plot([], [], "k--", lw=1, label=r"round-off $\propto \epsilon/h$, $\epsilon/h^2$")
     ax.set_ylim(1e-12, 1e1)
-    ax.set_xlabel("step h, rad")
+    ax.set_xlabel(r"step $h$, rad")
     ax.set_ylabel("largest error, 1/s or 1/s²")
     ax.legend(fontsize=8)
     return ax
 
 
-def plot_stored(report: dict, mechanism: str = "four-bar", ax=None):
-    """Time per position against the number of positions, from a stored benchmark run."""
+CHECK_STEPS = {1: 1e-5, 2: 1e-4}
+"""The steps h (rad) of the book's checks: velocities and accelerations by central differences."""
+
+
+def plot_stored(report: dict, mechanism: str = "four-bar", ax=None,
+                methods: Sequence[str] = ("closed form", "memory floor", "newton", "pylinkage")):
+    """Time per position against the number of positions, from a stored benchmark run.
+
+    Parameters
+    ----------
+    report : dict
+        A run of :func:`run` (or ``python -m mechanisms bench --format json``).
+    mechanism : str
+        Its name in the report.
+    ax : matplotlib Axes, optional
+        Where to draw.
+    methods : sequence of str
+        What to draw: ``closed form`` and ``memory floor`` at each order, ``newton`` at its tightest
+        tolerance, ``central difference`` at the steps of :data:`CHECK_STEPS` (velocities at
+        h = 1e-5, accelerations at h = 1e-4 rad), ``pylinkage`` (its ``step`` and ``step_fast``).
+    """
     import matplotlib.pyplot as plt
 
     if ax is None:
         _, ax = plt.subplots(figsize=(6.5, 4))
-    series: dict[Any, Any] = {}
+    series: dict[str, tuple[str, int, dict[int, float]]] = {}
     for r in report["results"]:
-        if r["mechanism"] != mechanism:
+        method = r["method"]
+        if r["mechanism"] != mechanism or method.split()[0] not in {m.split()[0] for m in methods}:
             continue
-        if r["method"] in ("closed form", "memory floor"):
-            key = f"{r['method']}, order {r['order']}"
-        elif r["method"] == "newton" and r["parameter"] == min(NEWTON_TOLERANCES):
-            key = f"newton, tol {r['parameter']:.0e}"
-        elif r["method"].startswith("pylinkage"):
-            key = r["method"]
+        if method in ("closed form", "memory floor"):
+            key = f"{method}, order {r['order']}"
+        elif method == "newton" and r["parameter"] == min(NEWTON_TOLERANCES):
+            key = rf"Newton, $\mathrm{{tol}} = 10^{{{math.log10(r['parameter']):.0f}}}$"
+        elif method == "central difference" and r["parameter"] == CHECK_STEPS[r["order"]]:
+            key = rf"central difference, order {r['order']}, $h = 10^{{{math.log10(r['parameter']):.0f}}}$"
+        elif method.startswith("pylinkage"):
+            key = method
         else:
             continue
-        best = series.setdefault(key, {})
+        _, _, best = series.setdefault(key, (method, r["order"], {}))
         best[r["n"]] = min(best.get(r["n"], math.inf), r["ns_per_position"])
-    for key, by_size in series.items():
+    for key, (method, order, by_size) in series.items():
         points = sorted(by_size.items())
-        method = key.split(",")[0]
         marker, colour = _METHOD_STYLE.get(method, ("o", "k"))
-        order = key.rsplit(" ", 1)[-1]
-        ls = {"0": ":", "1": "--"}.get(order, "-")
+        ls = {0: ":", 1: "--"}.get(order, "-") if method != "newton" else "-"
         ax.loglog(*zip(*points), marker=marker or ".", color=colour, ls=ls, label=key)
-    ax.set_xlabel("number of positions n")
+    ax.set_xlabel(r"number of positions $N_\varphi$")
     ax.set_ylabel("time per position, ns")
     ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
     return ax
