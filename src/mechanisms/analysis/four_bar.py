@@ -51,8 +51,8 @@ class GrashofClass:
     name : str
         ``crank-rocker`` (crank shortest), ``double-crank`` (frame shortest), ``double-rocker``
         (coupler shortest), ``rocker-crank`` (rocker shortest: the output turns fully, the
-        input rocks) when s + l < p + q; ``change point`` when s + l = p + q; ``triple rocker``
-        when s + l > p + q.
+        input rocks) when L_s + L_l < L_p + L_q; ``change point`` when L_s + L_l = L_p + L_q; ``triple rocker``
+        when L_s + L_l > L_p + L_q.
     shortest : str
         The role of the shortest link (``crank``, ``coupler``, ``rocker`` or ``frame``).
     margin : float
@@ -140,7 +140,7 @@ def limit_positions(mechanism: FourBar) -> LimitPositions:
     """
     if grashof_class(*mechanism.lengths).name != "crank-rocker":
         raise AssemblyError("limit positions of the rocker are defined here for a crank-rocker (shortest link "
-                            f"the crank, s + l < p + q); this linkage is a {grashof_class(*mechanism.lengths).name}")
+                            f"the crank, L_s + L_l < L_p + L_q); this linkage is a {grashof_class(*mechanism.lengths).name}")
     l1, l2, l3, d = mechanism.lengths
     c = mechanism.pivot
     found: list[tuple[float, float]] = []
@@ -199,7 +199,7 @@ def transmission_extremes(mechanism: FourBar) -> tuple[float, float]:
 
 def half_angle_terms(phi: ArrayLike, crank: float, coupler: float, rocker: float,
                      frame: tuple[float, float]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The lecture's auxiliary quantities P, Q, F of the four-bar's half-angle solution.
+    """The coefficients 𝒫, 𝒬, ℱ of the four-bar's half-angle solution (the lecture's P, Q, F).
 
     Parameters
     ----------
@@ -213,15 +213,15 @@ def half_angle_terms(phi: ArrayLike, crank: float, coupler: float, rocker: float
     Returns
     -------
     P, Q, F : ndarray
-        Arrays of the shape of ``phi`` (m): ``P = a − L1 cos φ``, ``Q = b − L1 sin φ``,
-        ``F = (P² + Q² + L2² − L3²)/(2 L2)``.
+        𝒫, 𝒬, ℱ, arrays of the shape of ``phi`` (m): ``𝒫 = x_C − L1 cos φ``, ``𝒬 = y_C − L1 sin φ``,
+        ``ℱ = (𝒫² + 𝒬² + L2² − L3²)/(2 L2)``.
 
     Notes
     -----
-    Chapters 2 and 4 (Alyushin, 2008): the coupler angle ψ solves ``P cos ψ + Q sin ψ = F``; the
-    half-angle formula ``ψ = 2 arctan[(Q ± √(Q² + P² − F²))/(P + F)]``
-    (:func:`mechanisms.linkages.four_bar.half_angle_coupler_angle`) divides by ``P + F``, which
-    chapter 9 finds the root of.
+    Chapters 2 and 4 (Alyushin, 2008): the coupler angle ψ solves ``𝒫 cos ψ + 𝒬 sin ψ = ℱ``; the
+    half-angle formula ``ψ = 2 arctan[(𝒬 ± √(𝒬² + 𝒫² − ℱ²))/(𝒫 + ℱ)]``
+    (:func:`mechanisms.linkages.four_bar.half_angle_coupler_angle`) divides by ``𝒫 + ℱ``, whose root
+    :func:`half_angle_denominator_root` finds (chapter 9).
     """
     return _pqf(phi, crank, coupler, rocker, frame)
 
