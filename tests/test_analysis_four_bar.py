@@ -143,3 +143,25 @@ def test_half_angle_terms_satisfy_the_constraint():
     psi = m.solve(phi, order=0).angle("coupler").value
     p, q, f = half_angle_terms(phi, 1.0, 3.5, 3.0, (4.0, 0.0))
     np.testing.assert_allclose(p * np.cos(psi) + q * np.sin(psi), f, atol=1e-13)
+
+
+def test_the_half_angle_denominator_root_is_the_closed_form_root():
+    # 𝒫 + ℱ = A cos φ + B sin φ + C0 with (hand algebra from 𝒫 = x_C − L1 cos φ, 𝒬 = y_C − L1 sin φ,
+    # ℱ = (𝒫² + 𝒬² + L2² − L3²)/(2 L2)): A = −L1(1 + x_C/L2), B = −L1 y_C/L2,
+    # C0 = x_C + (x_C² + y_C² + L1² + L2² − L3²)/(2 L2); its roots φ = atan2(B, A) ± arccos(−C0/√(A² + B²)).
+    from mechanisms.analysis.four_bar import half_angle_denominator_root
+    l1, l2, l3, (xc, yc) = 1.0, 3.5, 3.0, (-2.0, 3.0)      # chapter 9's linkage
+    a, b = -l1 * (1 + xc / l2), -l1 * yc / l2
+    c0 = xc + (xc**2 + yc**2 + l1**2 + l2**2 - l3**2) / (2 * l2)
+    roots = [math.atan2(b, a) + s * math.acos(-c0 / math.hypot(a, b)) for s in (1, -1)]
+    near = min(roots, key=lambda r: abs(math.remainder(r - math.radians(2.4), 2 * math.pi)))
+    expected = math.remainder(near, 2 * math.pi)
+    found = half_angle_denominator_root(math.radians(0.0), math.radians(5.0), l1, l2, l3, (xc, yc))
+    assert found == pytest.approx(expected, abs=1e-14)
+
+
+def test_the_half_angle_denominator_root_needs_a_sign_change():
+    from mechanisms import InvalidParameterError
+    from mechanisms.analysis.four_bar import half_angle_denominator_root
+    with pytest.raises(InvalidParameterError):     # 𝒫 + ℱ keeps its sign between 10° and 20°
+        half_angle_denominator_root(math.radians(10.0), math.radians(20.0), 1.0, 3.5, 3.0, (-2.0, 3.0))
