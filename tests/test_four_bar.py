@@ -28,8 +28,12 @@ def inner_angles(mechanism, count=7):
 def well_conditioned(mechanism, phi):
     """True if the coupler and rocker are nowhere nearly in line (|sin μ| > 0.1) and A ≠ C."""
     try:
-        sol = mechanism.solve(phi, order=0)
-    except AssemblyError:        # A passes through C when L2 = L3 and d = L1: indeterminate
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", SingularPositionWarning)
+            sol = mechanism.solve(phi, order=0)
+    # A passes through C when L2 = L3 and d = L1 (an indeterminate position): an error when exact,
+    # flagged singular when d is L1 only within round-off, as for frame = (cos 1, sin 1) and L1 = 1
+    except (AssemblyError, SingularPositionWarning):
         return False
     return np.all(np.abs(np.sin(sol.angle("coupler").value - sol.angle("rocker").value)) > 0.1)
 
@@ -231,3 +235,17 @@ def test_points_on_the_coupler_on_demand():
 def test_assembly_intervals_cover_a_full_turn_for_a_crank_rocker():
     (lo, hi), = assembly_intervals(1.0, 3.5, 3.0, (4.0, 0.5))
     assert hi - lo == pytest.approx(2 * np.pi)
+
+
+def test_a_pin_passing_within_round_off_of_the_pivot_is_flagged_singular():
+    # L2 = L3 and d = |(cos 1, sin 1)| = 1 = L1 only within round-off: exactly, no change point, but at
+    # φ = 1 rad the pin A comes within about 1e-16 m of C and the coupler angle is not determined there
+    m = FourBar(1.0, 0.5, 0.5, (math.cos(1.0), math.sin(1.0)))
+    assert m.change_points() == ()
+    with pytest.warns(SingularPositionWarning):
+        sol = m.solve(np.array([0.5, 1.0, 1.5]), order=0)
+    assert sol.singular.tolist() == [False, True, False]
+    # away from it the positions close the loop: |AB| = L2, |CB| = L3
+    a, b = sol.point("A").value[[0, 2]], sol.point("B").value[[0, 2]]
+    assert np.allclose(np.abs(b - a), 0.5, atol=1e-14)
+    assert np.allclose(np.abs(b - m.pivot), 0.5, atol=1e-14)
