@@ -608,8 +608,8 @@ _METHOD_STYLE = {"closed form": ("o", "#1f77b4"), "newton": ("s", "#ff7f0e"),
 def plot_work_precision(rows: list[dict], axes=None):
     """Work-precision diagrams: error against time per position, one panel per quantity.
 
-    Newton's points are labelled with their tolerance, the central differences with their step.
-    Returns the axes.
+    Newton's points are labelled with their tolerance tol, the central differences with their step h
+    (rad). Returns the axes.
     """
     import matplotlib.pyplot as plt
 
@@ -627,6 +627,7 @@ def plot_work_precision(rows: list[dict], axes=None):
                 ax.annotate(text, (xi, yi), xytext=(4, 2), textcoords="offset points", fontsize=7, color=colour)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.margins(x=0.25)  # room for the labels of the rightmost points
         ax.xaxis.set_minor_formatter(plt.NullFormatter())
         ax.set_title(quantity)
         ax.set_xlabel("time per position, ns")
@@ -645,7 +646,7 @@ def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tu
     for r, xi, yi in zip(chosen, x, y):
         if r["parameter"] is None:
             continue
-        text = f"{r['parameter']:.0e}"
+        text = _setting(r["method"], r["parameter"])
         if labels and 1 / 3 < yi / labels[-1][0][1] < 3:
             labels[-1] = (labels[-1][0], f"{labels[-1][1]}, {text}")
         else:
@@ -653,11 +654,17 @@ def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tu
     return labels
 
 
+def _setting(method: str, value: float) -> str:
+    """A method's setting as math text: Newton's tolerance or a difference step h (rad), a power of ten."""
+    symbol = r"\mathrm{tol}" if method == "newton" else "h"
+    return rf"${symbol} = 10^{{{math.log10(value):.0f}}}$"
+
+
 def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=None):
     """The U-shaped error of central differences against the step h, with its two asymptotes.
 
     Truncation: ``h²/6·|q'''|`` (velocities), ``h²/12·|q''''|`` (accelerations), fitted at the largest
-    step; round-off: ``ε/h`` and ``4ε/h²`` times the size of the coordinates (about 1 here).
+    step; round-off: ``ε_mach/h`` and ``4ε_mach/h²`` times the size of the coordinates (about 1 here).
     """
     import matplotlib.pyplot as plt
 
@@ -672,7 +679,7 @@ def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=N
         ax.loglog(h, truncation, ":", color=colour, lw=1)
         ax.loglog(h, roundoff, "--", color=colour, lw=1)
     ax.plot([], [], "k:", lw=1, label=r"truncation $\propto h^2$")
-    ax.plot([], [], "k--", lw=1, label=r"round-off $\propto \epsilon/h$, $\epsilon/h^2$")
+    ax.plot([], [], "k--", lw=1, label=r"round-off $\propto \epsilon_\mathrm{mach}/h$, $\epsilon_\mathrm{mach}/h^2$")
     ax.set_ylim(1e-12, 1e1)
     ax.set_xlabel(r"step $h$, rad")
     ax.set_ylabel("largest error, 1/s or 1/s²")
@@ -713,9 +720,9 @@ def plot_stored(report: dict, mechanism: str = "four-bar", ax=None,
         if method in ("closed form", "memory floor"):
             key = f"{method}, order {r['order']}"
         elif method == "newton" and r["parameter"] == min(NEWTON_TOLERANCES):
-            key = rf"Newton, $\mathrm{{tol}} = 10^{{{math.log10(r['parameter']):.0f}}}$"
+            key = "Newton, " + _setting(method, r["parameter"])
         elif method == "central difference" and r["parameter"] == CHECK_STEPS[r["order"]]:
-            key = rf"central difference, order {r['order']}, $h = 10^{{{math.log10(r['parameter']):.0f}}}$"
+            key = f"central difference, order {r['order']}, " + _setting(method, r["parameter"])
         elif method.startswith("pylinkage"):
             key = method
         else:

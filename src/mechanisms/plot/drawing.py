@@ -22,6 +22,10 @@ from ..core.motion import PointMotion
 from ..present.colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
 from .workarounds import light_figures_in_notebooks
 
+# axis labels typeset as the book's math (mathtext), never plain letters
+AXIS_X, AXIS_Y = "$x$, m", "$y$, m"
+_TEX = {"φ": r"\varphi", "ψ": r"\psi", "θ": r"\theta"}
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -242,8 +246,8 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
         for name, p in where.items():
             ax.annotate(name, (p.real, p.imag), xytext=offsets.get(name, default), textcoords="offset points",
                         fontsize=10, zorder=5)
-    ax.set_xlabel("x, m")
-    ax.set_ylabel("y, m")
+    ax.set_xlabel(AXIS_X)
+    ax.set_ylabel(AXIS_Y)
     return ax
 
 
@@ -343,8 +347,8 @@ def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Seq
     for label, motion in points.items():
         x, y = (np.append(motion.x, motion.x[0]), np.append(motion.y, motion.y[0])) if closed else (motion.x, motion.y)
         ax.plot(x, y, lw=1.2, label=label, color=next(colours))
-    ax.set_xlabel("x, m")
-    ax.set_ylabel("y, m")
+    ax.set_xlabel(AXIS_X)
+    ax.set_ylabel(AXIS_Y)
     return ax
 
 
@@ -386,7 +390,8 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axe
         One colour per curve; by default :data:`PATH_COLOURS`, the colours of
         :func:`trajectories`, so a point keeps its colour from path to diagram.
     angle_symbol : str
-        The crank angle's symbol on the axis (chapter 8 writes ψ, after its source).
+        The crank angle's symbol on the axis, typeset as math: a Greek letter (φ, ψ, θ) or TeX
+        (chapter 8 writes ψ, after its source).
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 3.2))
@@ -397,7 +402,7 @@ def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axe
     lo, hi = np.floor(deg.min() / step_deg) * step_deg, np.ceil(deg.max() / step_deg) * step_deg
     ax.set_xticks(np.arange(lo, hi + 0.5 * step_deg, step_deg))
     ax.set_xlim(deg.min(), deg.max())
-    ax.set_xlabel(f"crank angle {angle_symbol}, °")
+    ax.set_xlabel(f"crank angle ${_TEX.get(angle_symbol, angle_symbol)}$, °")
     ax.set_ylabel(ylabel)
     if len(curves) > 1:
         ax.legend()
@@ -441,6 +446,6 @@ def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax: Axes 
     if paths:
         for motion in (first, second):
             ax.plot(motion.x, motion.y, color="0.6", lw=0.8, ls="--")
-    ax.set_xlabel("x, m")
-    ax.set_ylabel("y, m")
+    ax.set_xlabel(AXIS_X)
+    ax.set_ylabel(AXIS_Y)
     return ax
