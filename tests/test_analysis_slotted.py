@@ -14,7 +14,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mechanisms as mech
-from mechanisms.analysis.slotted import half_swing, limit_positions, shaper_stroke, time_ratio
+from mechanisms.analysis.slotted import (distance_from_lever, half_swing, limit_positions, shaper_stroke,
+                                         time_ratio)
 from mechanisms.core.errors import InvalidParameterError
 from strategies import finite, slotted_lever_geometries
 
@@ -72,3 +73,23 @@ def test_bad_inputs():
         time_ratio(-1.0, 2.0)
     with pytest.raises(InvalidParameterError, match="pivot_distance"):
         limit_positions(mech.SlottedLever(0.2, (0.05, 0.0)))
+
+
+def test_distance_from_lever_by_hand_and_against_the_solution():
+    # expected (hand): at φ = 90° the pin A = (0, 0.1) is straight below C = (0, 0.3), so the lever points
+    # down (ξ = −90°), its left is +x, and O₂ = (0.12, 0.38) is h_N = 0.12 m from its line
+    rockers = mech.SlottedRockers(crank=0.1, pivot=(0.0, 0.3), rocker_pivot=(0.12, 0.38), rocker=0.2)
+    at = rockers.solve(np.radians([90.0]), omega=10.0)
+    assert distance_from_lever(rockers, at).value[0] == pytest.approx(0.12, abs=1e-15)
+    # expected: the solution's own record of h_N and its derivatives (same computation, kept under extras)
+    sol = rockers.solve(np.radians(np.arange(0.0, 360.0, 7.0)), omega=10.0, alpha=3.0)
+    h = distance_from_lever(rockers, sol)
+    for mine, kept in zip((h.value, h.velocity, h.acceleration), ("h", "h_t", "h_tt")):
+        np.testing.assert_array_equal(mine, sol.extras["O2"][kept])
+    # expected: (h_N)_t against central differences of h_N in the crank angle (ω1 = 1, ε1 = 0)
+    step = 1e-6
+    phi = np.radians(np.arange(3.0, 360.0, 11.0))
+    ahead = distance_from_lever(rockers, rockers.solve(phi + step, omega=1.0, order=0)).value
+    behind = distance_from_lever(rockers, rockers.solve(phi - step, omega=1.0, order=0)).value
+    rate = distance_from_lever(rockers, rockers.solve(phi, omega=1.0)).velocity
+    np.testing.assert_allclose(rate, (ahead - behind) / (2 * step), atol=1e-8)

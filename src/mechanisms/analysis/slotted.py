@@ -1,4 +1,5 @@
-"""Analysis of slotted-lever mechanisms (chapter 5): swing, limit positions, time ratio, shaper stroke.
+"""Analysis of slotted-lever mechanisms (chapter 5): swing, limit positions, time ratio, shaper stroke,
+and the distance h_N of the second rocker's pivot from the lever (two rockers with a slotted pair).
 
 For an oscillating lever (pivot C at distance d from the crank centre O, crank radius r < d) the
 lever is at an extreme position when it is tangent to the crank circle, OA ⊥ CA. Then
@@ -22,9 +23,13 @@ import numpy as np
 from .assignments import Quantity, Task, crank_speed, register_assignment, round_mm
 from ..core.errors import InvalidParameterError
 from ..core.validate import require_length
-from ..linkages.slotted import Shaper, SlottedLever
+from ..blocks.lines import distance_to_line
+from ..core.motion import Motion
+from ..linkages.base import Solution
+from ..linkages.slotted import Shaper, SlottedLever, SlottedRockers
 
-__all__ = ["half_swing", "time_ratio", "LimitPositions", "limit_positions", "ShaperStroke", "shaper_stroke"]
+__all__ = ["half_swing", "time_ratio", "LimitPositions", "limit_positions", "ShaperStroke", "shaper_stroke",
+           "distance_from_lever"]
 
 
 def half_swing(crank: float, pivot_distance: float) -> float:
@@ -136,6 +141,30 @@ def shaper_stroke(shaper: Shaper) -> ShaperStroke:
         dy = b.imag - shaper.ram_height
         xs.append(b.real + shaper.branch * math.sqrt((shaper.rod - dy) * (shaper.rod + dy)))
     return ShaperStroke((xs[0], xs[1]), abs(xs[0] - xs[1]), limits.time_ratio)
+
+
+def distance_from_lever(rockers: SlottedRockers, solution: Solution) -> Motion:
+    """h_N: the signed distance of the second rocker's pivot O₂ from the lever's line, with derivatives.
+
+    Parameters
+    ----------
+    rockers : SlottedRockers
+        The two rockers with a slotted pair (the lever turns about C, the second rocker about O₂).
+    solution : Solution
+        Its solution (``rockers.solve(...)``).
+
+    Returns
+    -------
+    Motion
+        h_N (m), positive when O₂ is on the lever's left (seen from C along the direction ξ), with
+        (h_N)_t (m/s) and (h_N)_tt (m/s²) up to the solution's order. The same values as the
+        solution's ``extras["O2"]["h"]``, ``["h_t"]``, ``["h_tt"]``.
+
+    Notes
+    -----
+    ``h_N = Im(e^{−iξ}(O₂ − C))`` and its derivatives (:func:`mechanisms.blocks.lines.distance_to_line`).
+    """
+    return distance_to_line(complex(*rockers.rocker_pivot), complex(*rockers.pivot), solution.angle("lever")).distance
 
 
 # --- the slotted lever's assignment (python -m mechanisms assign slotted-lever) -------------------------------------------------------------------------------------
