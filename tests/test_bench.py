@@ -182,3 +182,9 @@ def test_central_differences_solve_once_per_shifted_angle(name, monkeypatch):
             alone = mech.verify.central_difference(coordinate, phi, 1.0, 1e-4, derivative,
                                                    angle=angle)
             assert np.array_equal(values[row], alone)
+
+
+def test_setting_labels_are_powers_of_ten_in_math():
+    from mechanisms.bench import setting_label
+    assert setting_label("newton", 1e-10) == r"$\mathrm{tol} = 10^{-10}$"
+    assert setting_label("central difference", 1e-5) == "$h = 10^{-5}$"

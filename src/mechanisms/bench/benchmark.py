@@ -48,6 +48,7 @@ from ..verify.newton import jacobian, newton_steps, rates
 
 __all__ = [
     "benchmark_mechanisms",
+    "setting_label",
     "reference",
     "Reference",
     "coordinate_errors",
@@ -646,7 +647,7 @@ def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tu
     for r, xi, yi in zip(chosen, x, y):
         if r["parameter"] is None:
             continue
-        text = _setting(r["method"], r["parameter"])
+        text = setting_label(r["method"], r["parameter"])
         if labels and 1 / 3 < yi / labels[-1][0][1] < 3:
             labels[-1] = (labels[-1][0], f"{labels[-1][1]}, {text}")
         else:
@@ -654,8 +655,21 @@ def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tu
     return labels
 
 
-def _setting(method: str, value: float) -> str:
-    """A method's setting as math text: Newton's tolerance or a difference step h (rad), a power of ten."""
+def setting_label(method: str, value: float) -> str:
+    """A method's setting as math text for a figure or a table: Newton's tolerance or the step h (rad).
+
+    Parameters
+    ----------
+    method : str
+        ``"newton"`` (the value is the tolerance tol) or a numerical differentiation (the step h).
+    value : float
+        The setting, a power of ten.
+
+    Returns
+    -------
+    str
+        E.g. ``"$\\mathrm{tol} = 10^{-10}$"`` or ``"$h = 10^{-5}$"``.
+    """
     symbol = r"\mathrm{tol}" if method == "newton" else "h"
     return rf"${symbol} = 10^{{{math.log10(value):.0f}}}$"
 
@@ -720,9 +734,9 @@ def plot_stored(report: dict, mechanism: str = "four-bar", ax=None,
         if method in ("closed form", "memory floor"):
             key = f"{method}, order {r['order']}"
         elif method == "newton" and r["parameter"] == min(NEWTON_TOLERANCES):
-            key = "Newton, " + _setting(method, r["parameter"])
+            key = "Newton, " + setting_label(method, r["parameter"])
         elif method == "central difference" and r["parameter"] == CHECK_STEPS[r["order"]]:
-            key = f"central difference, order {r['order']}, " + _setting(method, r["parameter"])
+            key = f"central difference, order {r['order']}, " + setting_label(method, r["parameter"])
         elif method.startswith("pylinkage"):
             key = method
         else:
