@@ -114,6 +114,20 @@ def test_best_line_and_straight_part():
         straight_part(t, t + 1j * np.abs(t), 100, 1e-6)   # a corner: no straight part
 
 
+def test_straight_part_centred_by_crank_angle():
+    # the middle given as an angle picks the sample nearest to it: t = 0 is sample 100 (by
+    # construction of t), also when the angle is given a turn away (angles compared modulo 2π)
+    t = np.linspace(-1.0, 1.0, 201)
+    points = t + 0.01j * t**2
+    by_index = straight_part(t, points, 100, 0.004)
+    for angle in (0.0, 2.0 * np.pi, 1e-4):
+        assert straight_part(t, points, tolerance=0.004, centre_angle=angle) == by_index
+    with pytest.raises(ValueError, match="not both"):
+        straight_part(t, points, 100, 0.004, centre_angle=0.0)
+    with pytest.raises(ValueError, match="not both"):
+        straight_part(t, points, tolerance=0.004)
+
+
 @pytest.mark.parametrize("bad", [float("nan"), 0.0, -1.0])
 def test_grashof_class_rejects_bad_lengths(bad):
     from mechanisms.analysis.four_bar import grashof_class

@@ -1,8 +1,8 @@
 """Layer 4: analysis of the four-bar — Grashof class, range of the crank, limit positions of the
 rocker, time ratio, transmission angle and coupler curves (chapter 4).
 
-Notation: L1 crank, L2 coupler, L3 rocker, d = |OC| frame; s, l the shortest and longest of the
-four lengths, p, q the other two. The transmission angle μ is the angle at B between the
+Notation: L1 crank, L2 coupler, L3 rocker, d = |OC| frame; L_s, L_l the shortest and longest of
+the four lengths, L_p, L_q the other two. The transmission angle μ is the angle at B between the
 coupler and the rocker, 0 ≤ μ ≤ π.
 """
 
@@ -56,7 +56,7 @@ class GrashofClass:
     shortest : str
         The role of the shortest link (``crank``, ``coupler``, ``rocker`` or ``frame``).
     margin : float
-        (p + q) − (s + l) (m): positive for Grashof linkages, zero at a change point.
+        (L_p + L_q) − (L_s + L_l) (m): positive for Grashof linkages, zero at a change point.
     crank_rotates : bool
         The crank (input) can turn a full revolution.
     """
@@ -71,7 +71,7 @@ def grashof_class(crank: float, coupler: float, rocker: float, frame: float,
                   tolerance: float = 1e-9) -> GrashofClass:
     """Grashof's classification from the four lengths (m).
 
-    ``tolerance`` is relative to the sum of the lengths: within it, s + l = p + q counts as a
+    ``tolerance`` is relative to the sum of the lengths: within it, L_s + L_l = L_p + L_q counts as a
     change point. If two links are equally shortest, the first in the order crank, frame,
     coupler, rocker names the class.
     """
@@ -354,26 +354,49 @@ def best_line(points: np.ndarray) -> tuple[complex, complex, float, float]:
     return complex(centre), direction, float(np.ptp(along)), float(np.max(np.abs(across)))
 
 
-def straight_part(phi: np.ndarray, points: np.ndarray, centre: int, tolerance: float) -> StraightPart:
-    """The longest stretch of a path, symmetric in index about ``centre``, within ``tolerance`` of a line.
+def straight_part(phi: np.ndarray, points: np.ndarray, centre: int | None = None, tolerance: float = 0.01, *,
+                  centre_angle: float | None = None) -> StraightPart:
+    """The longest stretch of a path, symmetric about one sample, within ``tolerance`` of a line.
 
     Parameters
     ----------
     phi : ndarray
-        Crank angles (rad) of the samples, in order along the path.
+        Crank angles φ (rad) of the samples, in order along the path.
     points : ndarray of complex
         The path ``x + iy`` (m) at those angles.
-    centre : int
+    centre : int, optional
         Index of the sample at the middle of the straight part (e.g. on an axis of symmetry).
     tolerance : float
-        Largest distance (m) from the best line allowed.
+        Largest distance (m) from the best line allowed; 0.01 m unless given.
+    centre_angle : float, optional
+        The crank angle φ (rad) at the middle of the straight part, instead of ``centre``: the
+        sample whose angle is nearest to it (angles compared modulo 2π) is the middle.
+
+    Returns
+    -------
+    StraightPart
+        The crank angles at its ends, its length, its largest deviation and its best line.
+
+    Raises
+    ------
+    ValueError
+        If both or neither of ``centre`` and ``centre_angle`` are given, or if no stretch of three
+        samples about the middle lies within the tolerance.
 
     Notes
     -----
-    The window grows one sample on each side at a time while the best line's deviation stays
-    within the tolerance (chapter 4, Chebyshev's lambda mechanism).
+    The window grows one sample on each side at a time while the deviation of the best line
+    (:func:`best_line`, total least squares) stays within the tolerance (chapter 4, Chebyshev's
+    lambda mechanism).
     """
+    phi = np.asarray(phi, dtype=float)
     points = np.asarray(points, dtype=complex)
+    if (centre is None) == (centre_angle is None):
+        raise ValueError("give the middle of the straight part either as a sample index (centre) or as a "
+                         "crank angle in rad (centre_angle), not both")
+    if centre_angle is not None:
+        centre = int(np.argmin(np.abs(wrap_angle(phi - centre_angle))))
+    assert centre is not None
     best = None
     for half in range(1, min(centre, points.size - 1 - centre) + 1):
         window = points[centre - half:centre + half + 1]
@@ -392,7 +415,7 @@ def straight_part(phi: np.ndarray, points: np.ndarray, centre: int, tolerance: f
 FOUR_BAR_TRANSMISSION_DEG = (35.0, 145.0)
 """The transmission angle μ of a four-bar variant stays within these bounds (degrees)."""
 FOUR_BAR_GRASHOF_MARGIN = 0.02
-"""(p + q) − (s + l) of a four-bar variant is at least this fraction of the sum of the lengths."""
+"""(L_p + L_q) − (L_s + L_l) of a four-bar variant is at least this fraction of the sum of the lengths."""
 
 
 def _sample_four_bar(rng: np.random.Generator) -> tuple[FourBar, float]:
