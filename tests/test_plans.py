@@ -128,6 +128,32 @@ def test_reading_with_a_ruler_rounds_the_length_and_the_angle():
     assert rounded == pytest.approx(round(direction))
 
 
+def test_readings_and_vectors_have_named_fields():
+    _, v, a = _example()
+    reading = v.read("S2")
+    assert reading.magnitude == reading[0] and reading.direction_deg == reading[1]
+    # Table 5.5, analytical: v_S2 = 13.91 m/s at 131.4°
+    assert reading.magnitude == pytest.approx(13.91, abs=0.01)
+    assert reading.direction_deg == pytest.approx(131.4, abs=0.1)
+    v_a = v.vector("v_A")
+    assert v_a.magnitude == pytest.approx(17.2)                 # ω1·L1 = 215·0.08
+    assert v_a.direction_deg == pytest.approx(120.0)            # ⊥ OA at 30°, counter-clockwise
+    assert v.length_mm("S2") == pytest.approx(reading.magnitude / v.scale)   # a point's vector too
+    assert a.length_mm("B") == pytest.approx(abs(a.of("B")) / a.scale)
+
+
+def test_component_of_a_vector_along_a_direction():
+    _, v, _ = _example()
+    # the slider's velocity lies along the guide (+x): its component is v_B, across the guide 0
+    assert v.component("B", along=2.0) == pytest.approx(v.of("B").real)
+    assert v.component("B", along=1j) == pytest.approx(0.0, abs=1e-12)
+    # v_A = 17.2 m/s at 120°: along 30° (OA) it has no component, along 120° all of it (hand)
+    assert v.component("v_A", along=np.exp(1j * np.radians(30.0))) == pytest.approx(0.0, abs=1e-12)
+    assert v.component("v_A", along=np.exp(1j * np.radians(120.0))) == pytest.approx(17.2)
+    with pytest.raises(InvalidParameterError):
+        v.component("v_A", along=0.0)
+
+
 def test_given_scale_is_kept_and_bad_scales_are_refused():
     sol = EXAMPLE.solve(np.radians([30.0]), omega=215.0)
     v = plans.velocity_plan(EXAMPLE, sol, scale=0.25)

@@ -128,8 +128,10 @@ def test_instant_centres_of_a_four_bar_are_marked_and_labelled():
     centres = plans.instant_centres(m, sol)
     ax = plot_plans.draw_instant_centres(m, sol, centres)
     texts = [t.get_text() for t in ax.texts]
-    for name in ("01", "12", "23", "03", "02", "13"):
+    for name in ("02", "13"):                               # the stars: the centre's name alone
         assert f"$P_{{{name}}}$" in texts
+    for joint, name in (("O", "01"), ("A", "12"), ("B", "23"), ("C", "03")):   # a hinge is a centre
+        assert f"${joint} = P_{{{name}}}$" in texts
     stars = [ln for ln in ax.lines if ln.get_marker() == "*"]
     assert len(stars) == 2                                  # P02 and P13 are not joints
     centre = centres[(0, 2)]
@@ -144,12 +146,18 @@ def test_a_centre_at_infinity_is_drawn_as_an_arrow():
     assert "$P_{03}$ at ∞" in [t.get_text() for t in ax.texts]
 
 
-def test_velocities_from_the_centre_are_drawn_at_the_points():
+def _four_bar_centre_velocities():
+    """Chapter 4's crank-rocker at 60°: its centres, A and B, and their velocities from P02."""
     m = mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05))
     sol = m.solve(np.radians([60.0]), omega=10.0)
     centres = plans.instant_centres(m, sol)
     where = {n: sol.point(n).value[0] for n in "AB"}
     _, velocities = plans.velocities_from_centre(centres[(0, 2)], where["A"], sol.point("A").velocity[0], where)
+    return m, sol, centres, where, velocities
+
+
+def test_velocities_from_the_centre_are_drawn_at_the_points():
+    _, _, centres, where, velocities = _four_bar_centre_velocities()
     _, ax = plt.subplots()
     plot_plans.draw_centre_velocities(ax, centres[(0, 2)], where, velocities, scale=0.1)
     arrows = _arrows(ax)
@@ -157,3 +165,35 @@ def test_velocities_from_the_centre_are_drawn_at_the_points():
     tip = where["B"] + 0.1 * velocities["B"]
     assert any(np.allclose(a.xy, (tip.real, tip.imag)) for a in arrows)
     assert all(mcolors.same_color(a.arrow_patch.get_edgecolor(), plot.VELOCITY_COLOUR) for a in arrows)
+
+
+def test_the_letters_of_the_instant_centres_do_not_overlap():
+    m = mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05))
+    for mechanism, phi in ((m, 60.0), (EXAMPLE, 30.0)):
+        sol = mechanism.solve(np.radians([phi]), omega=10.0, order=0)
+        ax = plot_plans.draw_instant_centres(mechanism, sol, plans.instant_centres(mechanism, sol))
+        renderer = ax.figure.canvas.get_renderer()
+        boxes = [t.get_window_extent(renderer) for t in ax.texts if t.get_text()]
+        assert len(boxes) >= 6
+        for k, first in enumerate(boxes):
+            assert not any(first.overlaps(second) for second in boxes[k + 1:])
+
+
+def test_the_key_names_kennedy_s_lines_the_rays_and_the_velocity_scale():
+    m, sol, centres, where, velocities = _four_bar_centre_velocities()
+    ax = plot_plans.draw_instant_centres(m, sol, centres)
+    plot_plans.draw_centre_velocities(ax, centres[(0, 2)], where, velocities, scale=0.1, centre_label="$P_{02}$")
+    keys = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert keys == ["lines of Kennedy's theorem", "rays from $P_{02}$", "velocities, 1 m/s drawn as 0.1 m"]
+
+
+def test_vector_table_lists_every_vector_with_its_segment_length_and_direction():
+    sol, v, a = _example_plans()
+    text = plot_plans.vector_table(v, a)._repr_markdown_()
+    lines = text.splitlines()
+    assert lines[0] == "| vector | on the plan | magnitude, m/s or m/s² | length, mm | direction, ° |"
+    assert len(lines) == 2 + len(v.vectors) + len(a.vectors)
+    # v_A = ω1·L1 = 17.2 m/s drawn 86 mm at μ_v = 0.2 (m/s)/mm, at 30° + 90° = 120° (hand calculation)
+    assert lines[2] == "| $v_{A}$ | $pa$ | 17.20 | 86.00 | 120.0 |"
+    only_velocities = plot_plans.vector_table(v)._repr_markdown_().splitlines()[0]
+    assert "magnitude, m/s |" in only_velocities

@@ -29,7 +29,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
-from typing import Mapping, Sequence, cast
+from typing import Mapping, NamedTuple, Sequence, cast
 
 import numpy as np
 
@@ -40,6 +40,7 @@ from ..linkages.groups import RPR, RRP, RRR, Crank, LinkPoint, four_link, link_n
 
 __all__ = [
     "PlanVector",
+    "Reading",
     "Plan",
     "VelocityPlan",
     "AccelerationPlan",
@@ -203,6 +204,31 @@ class PlanVector:
             return f"{letter}^{{{superscript}}}_{{{subscript}}}"
         return f"{letter}_{{{subscript}}}"
 
+    @property
+    def magnitude(self) -> float:
+        """Its magnitude ``|value|`` (m/s or m/s²)."""
+        return abs(self.value)
+
+    @property
+    def direction_deg(self) -> float:
+        """Its direction in degrees, counter-clockwise from +x, in [0, 360)."""
+        return math.degrees(math.atan2(self.value.imag, self.value.real)) % 360.0
+
+
+class Reading(NamedTuple):
+    """A vector read off a plan: what a ruler and a protractor give (:meth:`Plan.read`).
+
+    Attributes
+    ----------
+    magnitude : float
+        Its drawn length times the scale μ (m/s or m/s²).
+    direction_deg : float
+        Its direction in degrees, counter-clockwise from +x, in [0, 360).
+    """
+
+    magnitude: float
+    direction_deg: float
+
 
 @dataclass(frozen=True)
 class Plan:
@@ -274,16 +300,42 @@ class Plan:
             raise KeyError(f"no point named {point!r} on the {self.quantity} plan; known: "
                            + ", ".join(self.points)) from None
 
+    def value(self, name: str) -> complex:
+        """A vector of the plan by its name (``v_BA``), or a mechanism point's absolute vector (``S2``)."""
+        return self.of(name) if name in self.points else self.vector(name).value
+
     def length_mm(self, name: str) -> float:
-        """The drawn length of a vector (mm): its magnitude divided by the scale."""
-        return abs(self.vector(name).value) / self.scale
+        """The drawn length (mm) of a vector, or of a point's absolute vector: magnitude / scale."""
+        return abs(self.value(name)) / self.scale
+
+    def component(self, name: str, along: complex) -> float:
+        """The signed component of a vector (or a point's absolute vector) along a direction.
+
+        Parameters
+        ----------
+        name : str
+            A vector's name (``v_A3A2``, ``a^k_A3A2``) or a mechanism point's name.
+        along : complex
+            The direction, any length but not zero (e.g. ``A − C``, along the slot from C to A,
+            or ``1j * (A − C)``, across it).
+
+        Returns
+        -------
+        float
+            ``Re(value · conj(along)) / |along|`` (m/s or m/s²): positive if the vector points
+            the way of ``along``.
+        """
+        direction = complex(along)
+        if direction == 0:
+            raise InvalidParameterError("along", along, "a non-zero direction")
+        return (self.value(name) * direction.conjugate()).real / abs(direction)
 
     def drawn(self, label: str) -> complex:
         """A vertex in drawing coordinates (mm from the pole, x to the right, y up)."""
         return self.vertices[label] / self.scale
 
     def read(self, name: str, resolution_mm: float = 0.0,
-             resolution_deg: float = 0.0) -> tuple[float, float]:
+             resolution_deg: float = 0.0) -> Reading:
         """Read a vector off the drawing: its length × scale and its direction.
 
         Parameters
@@ -297,17 +349,18 @@ class Plan:
 
         Returns
         -------
-        (magnitude, direction_deg) : (float, float)
-            In m/s or m/s², and degrees counter-clockwise from +x in [0, 360).
+        Reading
+            ``magnitude`` in m/s or m/s², and ``direction_deg`` counter-clockwise from +x in
+            [0, 360); a named pair, so ``magnitude, direction = plan.read("B")`` works too.
         """
-        value = self.of(name) if name in self.points else self.vector(name).value
+        value = self.value(name)
         length = abs(value) / self.scale
         direction = math.degrees(math.atan2(value.imag, value.real)) % 360.0
         if resolution_mm:
             length = round(length / resolution_mm) * resolution_mm
         if resolution_deg:
             direction = (round(direction / resolution_deg) * resolution_deg) % 360.0
-        return length * self.scale, direction
+        return Reading(length * self.scale, direction)
 
     def closure(self) -> float:
         """The largest |left − right| of the plan's vector equations (m/s or m/s²): round-off."""

@@ -15,9 +15,11 @@ from typing import TYPE_CHECKING, Any, Mapping
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import Polygon
+from matplotlib.text import Annotation
 
 from ..analysis.plans import AccelerationPlan, InstantCentres, Plan, VelocityPlan
-from ..linkages.base import Mechanism, Solution
+from ..linkages.base import Block, Ground, Mechanism, Solution
+from ..present.tables import MarkdownTable, markdown_table
 from .drawing import ACCELERATION_COLOUR, ROLE_COLOURS, VELOCITY_COLOUR, draw
 
 if TYPE_CHECKING:
@@ -25,7 +27,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["LINK_ROLES", "draw_plan", "draw_plans", "draw_instant_centres", "draw_centre_velocities",
-           "vertex_label", "segment_label", "vector_label"]
+           "vertex_label", "segment_label", "vector_label", "vector_table"]
 
 LINK_ROLES = {"crank": "crank", "coupler": "coupler", "rocker": "rocker", "lever": "lever", "slider": "slider",
               "rod": "coupler"}
@@ -100,6 +102,32 @@ def vector_label(latex: str) -> str:
         The name in math mode, as the book writes it ($v_{BA}$, $a^n_{BA}$, $a^k_{A_3A_2}$; chapter 10).
     """
     return "$" + re.sub(r"([A-Z])(\d+)", r"\1_{\2}", latex) + "$"
+
+
+def vector_table(*plans: Plan, length_format: str = ".2f", magnitude_format: str = ".2f",
+                 direction_format: str = ".1f") -> MarkdownTable:
+    """Every vector of one or more plans as a Markdown table: name, segment, magnitude, length, direction.
+
+    Parameters
+    ----------
+    *plans : Plan
+        The plans, in order (e.g. the velocity plan, then the acceleration plan).
+    length_format, magnitude_format, direction_format : str
+        Format specs of the drawn length (mm), the magnitude (m/s or m/s²) and the direction (°).
+
+    Returns
+    -------
+    MarkdownTable
+        One row a vector, in the order of construction: its name ($v_{BA}$), its segment on the plan
+        ($ab$), its magnitude, its drawn length (mm, magnitude / μ) and its direction (°,
+        counter-clockwise from +x, in [0, 360)); the book's letters (chapter 10).
+    """
+    units = list(dict.fromkeys(plan.unit for plan in plans))       # in the order of the plans
+    rows = [(vector_label(x.latex), segment_label(x.tail, x.head), x.magnitude, x.magnitude / plan.scale,
+             x.direction_deg)
+            for plan in plans for x in plan.vectors]
+    headers = ["vector", "on the plan", f"magnitude, {' or '.join(units)}", "length, mm", "direction, °"]
+    return markdown_table(headers, rows, ["", "", magnitude_format, length_format, direction_format], align="llrrr")
 
 
 def _arrow(ax: Axes, tail: complex, head: complex, colour: str, style: str, width: float, zorder: int = 3) -> None:
@@ -291,8 +319,10 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         placer.place(text, placer.around(text, point, away))
     for index, vector, shade in named:
         tail, head = drawn[vector.tail], drawn[vector.head]
-        text = ax.text(0.0, 0.0, vector_label(vector.latex), fontsize=9, color=shade, ha="center", va="center",
-                       zorder=5, bbox=_LABEL_BOX)
+        name = vector_label(vector.latex)
+        size = 12 if re.search(r"[A-Z]_\{\d", name) else 10     # a subscript's subscript needs the larger size
+        text = ax.text(0.0, 0.0, name, fontsize=size, color=shade, ha="center", va="center", zorder=5,
+                       bbox=_LABEL_BOX)
         placer.place(text, placer.beside(text, tail, head), skip=index, optional=True)
     ax.set_xlabel("mm of the drawing")
     ax.set_ylabel("mm of the drawing")
@@ -330,15 +360,93 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     return fig, axes
 
 
-def _extend(ax: Axes, first: complex, second: complex, beyond: float = 0.15) -> None:
+def _extend(ax: Axes, first: complex, second: complex, beyond: float = 0.15, label: str = "_nolegend_") -> None:
     """A thin dotted line through two points, a little beyond both."""
     d = second - first
     a, b = first - beyond * d, second + beyond * d
-    ax.plot([a.real, b.real], [a.imag, b.imag], ls=":", lw=1.0, color="0.45", zorder=1)
+    ax.plot([a.real, b.real], [a.imag, b.imag], ls=":", lw=1.0, color="0.45", zorder=1, label=label)
+
+
+def _free_directions(occupied: list[complex], preferred: complex = 1j) -> list[complex]:
+    """The 24 unit directions, those farthest in angle from every occupied direction first.
+
+    ``occupied`` are the directions of the lines through a point; ties go to the direction nearest
+    ``preferred``.
+    """
+    units = [d / abs(d) for d in occupied if abs(d) > 0]
+    scored = []
+    for angle in np.radians(np.arange(0.0, 360.0, 15.0)):
+        u = complex(np.cos(angle), np.sin(angle))
+        gap = min((abs(np.angle(u * d.conjugate())) for d in units), default=np.pi)
+        scored.append((-(gap + 0.05 * (u * preferred.conjugate()).real), angle, u))
+    return [u for _, _, u in sorted(scored)]
+
+
+class _Letters:
+    """Writes letters beside points: in a free direction, over as little line as can be, on no earlier letter.
+
+    The lines are those on the axes when it is made (bars, Kennedy's lines, rays) and the arrows of
+    annotations, sampled in display coordinates.
+    """
+
+    def __init__(self, ax: Axes):
+        self.ax = ax
+        ax.apply_aspect()
+        self.renderer = ax.figure.canvas.get_renderer()   # type: ignore[attr-defined]
+        self.boxes: list[Any] = []
+        samples = []
+        t = np.linspace(0.0, 1.0, 60)[:, None]
+        for line in ax.lines:
+            xy = np.column_stack([np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)])
+            for a, b in zip(xy[:-1], xy[1:]):
+                samples.append(a + t * (b - a))
+        for text in ax.texts:
+            if isinstance(text, Annotation) and text.arrow_patch is not None:
+                head = np.array(text.xy, float)
+                tail = np.array(text.xyann, float) if text.anncoords == "data" else head
+                samples.append(tail + t * (head - tail))
+        points = np.concatenate(samples) if samples else np.zeros((0, 2))
+        self.samples = ax.transData.transform(points) if len(points) else points
+
+    def covered(self, box: Any) -> int:
+        """How many sampled points of lines lie under a box (display coordinates)."""
+        if not len(self.samples):
+            return 0
+        x, y = self.samples[:, 0], self.samples[:, 1]
+        return int(np.sum((x > box.x0) & (x < box.x1) & (y > box.y0) & (y < box.y1)))
+
+    def write(self, point: complex, text: str, directions: list[complex], distance: float, **style: Any) -> None:
+        """Of the first directions, keep the one over the least line whose letter overlaps no letter written."""
+        best: tuple[float, complex] | None = None
+        for rank, direction in enumerate(directions[:12]):
+            label = self._label(point, text, direction, distance, **style)
+            box = label.get_window_extent(self.renderer).expanded(1.05, 1.1)
+            label.remove()
+            if any(box.overlaps(other) for other in self.boxes):
+                continue
+            score = self.covered(box.padded(4.0)) + 0.5 * rank
+            if best is None or score < best[0]:
+                best = (score, direction)
+        direction = directions[0] if best is None else best[1]
+        label = self._label(point, text, direction, distance, **style)
+        self.boxes.append(label.get_window_extent(self.renderer).expanded(1.05, 1.1))
+
+    def _label(self, point: complex, text: str, direction: complex, distance: float, **style: Any) -> Any:
+        ha = "left" if direction.real > 0.35 else "right" if direction.real < -0.35 else "center"
+        va = "bottom" if direction.imag > 0.35 else "top" if direction.imag < -0.35 else "center"
+        return self.ax.annotate(text, (point.real, point.imag), textcoords="offset points",
+                                xytext=(distance * direction.real, distance * direction.imag),
+                                ha=ha, va=va, bbox=_LABEL_BOX, **style)
+
+
+def _key(ax: Axes) -> None:
+    """The key of the line styles, below the axes, where it covers nothing."""
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize=9, frameon=False)
 
 
 def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: InstantCentres, index: int = 0,
-                         ax: Axes | None = None, lines: bool = True, arrow_length: float | None = None) -> Axes:
+                         ax: Axes | None = None, lines: bool = True, arrow_length: float | None = None,
+                         legend: bool = True) -> Axes:
     """The mechanism with all its instant centres P_ij, and Kennedy's lines that locate P02 and P13.
 
     Parameters
@@ -348,53 +456,83 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
     centres : InstantCentres
         From :func:`mechanisms.analysis.plans.instant_centres` at that position.
     lines : bool
-        Draw the lines of Kennedy's theorem through the centres that locate P02 and P13.
+        Draw (dotted) the lines of Kennedy's theorem through the centres that locate P02 and P13.
     arrow_length : float, optional
         Length (m) of the arrows that point to centres at infinity.
+    legend : bool
+        Give the dotted lines a key.
 
     Returns
     -------
     matplotlib Axes
+
+    Notes
+    -----
+    A joint is lettered with its centre ("$A = P_{12}$"); the two centres found by Kennedy's
+    theorem are stars. Each letter is set in the direction, from its point, farthest from the
+    lines that pass through the point (bars, Kennedy's lines, the frame's support below a pivot).
     """
-    ax = draw(mechanism, solution, index=index, ax=ax, labels=True)
+    ax = draw(mechanism, solution, index=index, ax=ax, labels=False)
     finite = centres.finite
     every = np.array(list(finite.values()) + list(centres.positions.values()))
     span = max(np.ptp(every.real), np.ptp(every.imag))
     arrow_length = arrow_length or 0.12 * span
     if lines:
+        first = True
         for target, ways in (((0, 2), (((0, 1), (1, 2)), ((0, 3), (2, 3)))),
                              ((1, 3), (((0, 1), (0, 3)), ((1, 2), (2, 3))))):
             if target not in finite:
                 continue
             for pair in (p for way in ways for p in way):
+                label = "lines of Kennedy's theorem" if first else "_nolegend_"
+                first = False
                 if pair in finite:
-                    _extend(ax, finite[pair], finite[target])
+                    _extend(ax, finite[pair], finite[target], label=label)
                 else:  # a centre at infinity: the line through the target in its direction
                     d = centres.infinite[pair] * 0.6 * span
-                    _extend(ax, finite[target] - d, finite[target] + d, 0.0)
-    for (i, j), point in finite.items():
-        joint = any(abs(point - p) < 1e-12 * span for p in centres.positions.values())
-        if not joint:
+                    _extend(ax, finite[target] - d, finite[target] + d, 0.0, label=label)
+    scheme = mechanism.scheme()
+    fixed = {item.joint for item in scheme if isinstance(item, Ground)}
+    sliding = {item.joint: item.angle for item in scheme if isinstance(item, Block)
+               and isinstance(item.angle, (int, float))}      # a block on a fixed guide
+    names = {pair: name for name, where in centres.positions.items() for pair, point in finite.items()
+             if abs(point - where) < 1e-12 * span}
+    margin = 0.12 * span
+    ax.set_xlim(every.real.min() - margin, every.real.max() + margin)
+    ax.set_ylim(every.imag.min() - margin, every.imag.max() + margin)
+    letters = _Letters(ax)
+    for (i, j), point in sorted(finite.items(), key=lambda item: item[0] in names):   # stars first
+        occupied = [q - point for q in finite.values() if abs(q - point) > 1e-12 * span]
+        occupied += [-d for d in occupied]
+        occupied += [d for d in centres.infinite.values()] + [-d for d in centres.infinite.values()]
+        name = names.get((i, j))
+        if name in fixed:
+            occupied += [-1j, -0.6 - 1j, 0.6 - 1j]      # the pivot's support, below it
+        if name in sliding:                             # the guide, its hatching below, the block
+            along = complex(np.cos(sliding[name]), np.sin(sliding[name]))
+            occupied += [along, -along, -1j * along, 0.5 * along - 1j * along, -0.5 * along - 1j * along]
+        if name is None:
             ax.plot(point.real, point.imag, marker="*", ms=12, color=ROLE_COLOURS["point"], mec="black", zorder=6)
-        ax.annotate(f"$P_{{{i}{j}}}$", (point.real, point.imag), xytext=(6, -14) if joint else (-10, 9),
-                    textcoords="offset points", fontsize=10, color="0.2", zorder=6,
-                    ha="left" if joint else "right")
+        text = f"$P_{{{i}{j}}}$" if name is None else f"${name} = P_{{{i}{j}}}$"
+        distance = 14.0 if name in sliding else 8.0 if name is None else 6.0
+        letters.write(point, text, _free_directions(occupied), distance, fontsize=10,
+                      color="black" if name else "0.2", zorder=7)
     for (i, j), direction in centres.infinite.items():
         # from the joint of the slider, an arrow towards the centre at infinity
         start = centres.positions.get("B", 0j)
         end = start + arrow_length * direction
         ax.annotate("", xy=(end.real, end.imag), xytext=(start.real, start.imag),
                     arrowprops={"arrowstyle": "->", "color": "0.3", "lw": 1.0, "linestyle": "--"})
-        ax.annotate(f"$P_{{{i}{j}}}$ at ∞", (end.real, end.imag), xytext=(4, 2), textcoords="offset points",
-                    fontsize=10, color="0.2")
-    margin = 0.1 * span
-    ax.set_xlim(every.real.min() - margin, every.real.max() + margin)
-    ax.set_ylim(every.imag.min() - margin, every.imag.max() + margin)
+        letters.write(end, f"$P_{{{i}{j}}}$ at ∞", [direction, direction * 1j, -direction * 1j], 4.0,
+                      fontsize=10, color="0.2", zorder=7)
+    if legend and lines:
+        _key(ax)
     return ax
 
 
 def draw_centre_velocities(ax: Axes, centre: complex, positions: Mapping[str, complex],
-                           velocities: Mapping[str, complex], scale: float) -> Axes:
+                           velocities: Mapping[str, complex], scale: float, centre_label: str = "the centre",
+                           legend: bool = True) -> Axes:
     """Velocities of a link's points drawn at the points, with the rays from the link's instant centre.
 
     Parameters
@@ -406,14 +544,23 @@ def draw_centre_velocities(ax: Axes, centre: complex, positions: Mapping[str, co
     positions, velocities : dict
         Name → position (m) and velocity (m/s) of each point.
     scale : float
-        m of the drawing per m/s; state it in the caption.
+        m of the drawing per m/s; the key states it.
+    centre_label : str
+        The centre's name in the key (``"$P_{02}$"``).
+    legend : bool
+        Give the rays and the arrows a key (with the lines already labelled on the axes).
 
     Returns
     -------
     matplotlib Axes
     """
-    for name, point in positions.items():
-        ax.plot([centre.real, point.real], [centre.imag, point.imag], color="0.55", lw=0.9, ls="--", zorder=1)
+    for k, (name, point) in enumerate(positions.items()):
+        ax.plot([centre.real, point.real], [centre.imag, point.imag], color="0.55", lw=0.9, ls="--", zorder=1,
+                label=f"rays from {centre_label}" if k == 0 else "_nolegend_")
         tip = point + scale * velocities[name]
         _arrow(ax, point, tip, VELOCITY_COLOUR, "-", 2.0, zorder=5)
+    if legend:
+        ax.plot([], [], color=VELOCITY_COLOUR, lw=2.0, marker=">", markevery=[-1],
+                label=f"velocities, 1 m/s drawn as {scale:g} m")
+        _key(ax)
     return ax
