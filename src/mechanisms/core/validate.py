@@ -54,7 +54,7 @@ than a radian apart."""
 
 OMEGA_MAX = 1e50
 """The largest |ω| = |φ_t| of the crank (rad/s): accelerations ω²·L then stay in range for every length
-between :data:`LENGTH_MIN` and :data:`LENGTH_MAX`, dead-centre amplification included. (A very small ω
+between :data:`LENGTH_MIN` and :data:`LENGTH_MAX`, the growth near singular positions included. (A very small ω
 is accepted; accelerations below about 1e-300 m/s² then lose relative accuracy to underflow.)"""
 
 ALPHA_MAX = 1e100
