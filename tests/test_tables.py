@@ -30,3 +30,18 @@ def test_a_tiny_negative_number_in_exponent_form_keeps_its_sign():
     # -3e-20 in ".1e" is "-3.0e-20": not zero, so its sign stays; nan and -inf stay as they are
     table = mech.markdown_table(["a", "b", "c"], [[-3e-20, float("nan"), float("-inf")]], ".1e")
     assert table.text.splitlines()[2] == "| -3.0e-20 | nan | -inf |"
+
+
+def test_number_prints_no_negative_zero_and_none_as_a_dash():
+    from mechanisms import number
+    assert number(-1e-17, ".4f", "m") == "0.0000 m"
+    assert number(-0.0, ".3f") == "0.000"
+    assert number(-0.0126, ".2f") == "-0.01"
+    assert number(None) == "—"
+    assert number(complex(0.3, -2e-17), ".4f") == "(0.3000, 0.0000)"
+    assert number(complex(-1.5, 2.25), ".2f", "m") == "(-1.50, 2.25) m"
+
+
+def test_markdown_table_prints_none_as_a_dash():
+    from mechanisms import markdown_table
+    assert markdown_table(["x"], [[None], [1.0]], ".1f").text.splitlines()[2:] == ["| — |", "| 1.0 |"]

@@ -2,7 +2,7 @@
 data for the site's player (:mod:`~mechanisms.present.scene`)."""
 
 from .scene import Arrow, Line, On, Parameter, Readout, Scene, acceleration, explorer, scene, velocity
-from .tables import MarkdownTable, difference, magnitude, markdown_table
+from .tables import MarkdownTable, difference, magnitude, markdown_table, number
 
-__all__ = ["MarkdownTable", "markdown_table", "difference", "magnitude", "Scene", "scene", "explorer", "Parameter",
+__all__ = ["MarkdownTable", "markdown_table", "number", "difference", "magnitude", "Scene", "scene", "explorer", "Parameter",
            "Readout", "Arrow", "Line", "On", "velocity", "acceleration"]

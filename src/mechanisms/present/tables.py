@@ -6,7 +6,7 @@ import math
 import re
 from typing import Sequence
 
-__all__ = ["MarkdownTable", "markdown_table", "difference", "magnitude"]
+__all__ = ["MarkdownTable", "markdown_table", "number", "difference", "magnitude"]
 
 
 class MarkdownTable:
@@ -24,15 +24,43 @@ class MarkdownTable:
     __str__ = __repr__
 
 
+def number(value: float | complex | None, fmt: str = ".4g", unit: str = "") -> str:
+    """A number for people, as the book prints it.
+
+    Parameters
+    ----------
+    value : float, complex or None
+        The number; ``None`` (a quantity that does not apply) is printed as ``—``. A complex number
+        (a point or a vector of the plane) is printed as ``(x, y)``.
+    fmt : str
+        Format spec of each number (``".4f"``). A number that rounds to zero in it is printed without
+        a sign: ``-0.0001`` with ``".3f"`` gives ``0.000``, never ``-0.000``.
+    unit : str
+        Appended after a space.
+
+    Examples
+    --------
+    >>> number(-1e-17, ".4f", "m")
+    '0.0000 m'
+    >>> number(0.3 - 2e-17j, ".4f")
+    '(0.3000, 0.0000)'
+    """
+    if value is None:
+        text = "—"
+    elif isinstance(value, complex):
+        text = f"({number(value.real, fmt)}, {number(value.imag, fmt)})"
+    else:
+        text = format(value, fmt)
+        if "-" in text and _rounds_to_zero(text):
+            text = format(0.0, fmt)
+    return f"{text} {unit}".rstrip()
+
+
 def _cell(value, fmt: str) -> str:
-    """One cell: a string as it is, a number formatted; a number that rounds to zero is printed
-    without a minus sign (``-0.0001`` and ``-0.0`` with ``".3f"`` give ``"0.000"``, not ``"-0.000"``)."""
+    """One cell: a string as it is, a number as :func:`number` prints it (``None`` as ``—``)."""
     if isinstance(value, str):
         return value
-    text = format(value, fmt)
-    if "-" in text and _rounds_to_zero(text):
-        return format(0.0, fmt)
-    return text
+    return number(value, fmt)
 
 
 def _rounds_to_zero(text: str) -> bool:
@@ -51,7 +79,7 @@ def markdown_table(headers: Sequence[str], rows: Sequence[Sequence], formats: st
     headers : sequence of str
         Column headings, with units (``"ω2, 1/s"``).
     rows : sequence of sequences
-        The cells; numbers are formatted, strings kept.
+        The cells; numbers are formatted (see :func:`number`; ``None`` is ``—``), strings kept.
     formats : str or sequence of str
         Format spec for numbers, one for all columns or one per column (``".3f"``). A number that
         rounds to zero in its format is printed without a sign (``0.000``, never ``-0.000``).
