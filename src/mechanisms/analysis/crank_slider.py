@@ -114,10 +114,15 @@ def dead_centres(mechanism: CrankSlider) -> DeadCentres:
 
     Notes
     -----
-    Stretched: |OB| = L1 + L2, so ``x_B = b·√((L1 + L2 − e)(L1 + L2 + e))`` on the guide y = e and the
-    crank points at B, φ_outer = atan2(e, x_B). Folded: |OB| = L2 − L1, ``x_B = b·√((L2 − L1 − |e|)(L2 −
-    L1 + |e|))`` and the crank points away from B, φ_inner = atan2(e, x_B) + π (b is the branch).
+    Stretched: |OB| = L1 + L2, so ``x_B = σ·√((L1 + L2 − e)(L1 + L2 + e))`` on the guide y = e and the
+    crank points at B, φ_outer = atan2(e, x_B). Folded: |OB| = L2 − L1, ``x_B = σ·√((L2 − L1 − |e|)(L2 −
+    L1 + |e|))`` and the crank points away from B, φ_inner = atan2(e, x_B) + π (σ is the branch).
     The products under the roots avoid cancellation.
+
+    In the limiting geometry L2 = L1 + |e| the folded position is also the singular position where the
+    coupler stands perpendicular to the guide (chapter 3): the slider is at its extreme there but
+    reverses without coming to rest, so ``phi_inner`` is an extreme position, not a dead centre in the
+    book's sense (``solve`` flags it singular).
     """
     _require_full_revolution(mechanism, "the pair of dead centres")
     l1, l2, e, b = mechanism.crank, mechanism.rod, mechanism.offset, mechanism.branch
