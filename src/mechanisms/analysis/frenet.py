@@ -213,7 +213,7 @@ def law_from_angles(crank: AngleMotion, link: AngleMotion, radius: float, centre
     centre : complex
         The crank pivot O (m).
     singular : ndarray of bool, optional
-        Dead-centre positions, passed on.
+        Singular positions, passed on.
 
     Returns
     -------
