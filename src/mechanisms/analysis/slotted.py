@@ -1,16 +1,16 @@
 """Analysis of slotted-lever mechanisms (chapter 5): swing, limit positions, time ratio, shaper stroke,
 and the distance h_N of the second rocker's pivot from the lever (two rockers with a slotted pair).
 
-For an oscillating lever (pivot C at distance d from the crank centre O, crank radius r < d) the
+For an oscillating lever (pivot C at distance d from the crank centre O, crank length L₁ < d) the
 lever is at an extreme position when it is tangent to the crank circle, OA ⊥ CA. Then
 
-    sin β = r / d
+    sin β_s = L₁ / d
 
-where β is half the lever's swing, and the crank angles between the two extremes are π − 2β
-(the quick stroke, on the side of the pivot) and π + 2β (the slow stroke). The time ratio (the
+where β_s is half the lever's swing, and the crank angles between the two extremes are π − 2β_s
+(the quick stroke, on the side of the pivot) and π + 2β_s (the slow stroke). The time ratio (the
 coefficient of the change of the mean speed) of a crank turning at constant speed is
 
-    K = (π + 2β) / (π − 2β).
+    K = (π + 2β_s) / (π − 2β_s).
 """
 
 from __future__ import annotations
@@ -33,18 +33,18 @@ __all__ = ["half_swing", "time_ratio", "LimitPositions", "limit_positions", "Sha
 
 
 def half_swing(crank: float, pivot_distance: float) -> float:
-    """Half the swing β of an oscillating slotted lever (rad): ``sin β = r/d``.
+    """Half the swing β_s of an oscillating slotted lever (rad): ``sin β_s = L₁/d``.
 
     Parameters
     ----------
     crank : float
-        Crank radius r (m).
+        Crank length L₁ (m).
     pivot_distance : float
-        Distance d = |OC| from the crank centre to the lever's pivot (m), greater than r.
+        Distance d = |OC| from the crank centre to the lever's pivot (m), greater than L₁.
 
     Notes
     -----
-    ``β = atan2(r, √((d − r)(d + r)))`` (accurate also when r is close to d).
+    ``β_s = atan2(L₁, √((d − L₁)(d + L₁)))`` (accurate also when L₁ is close to d).
     """
     r = require_length("crank", crank)
     d = require_length("pivot_distance", pivot_distance)
@@ -55,7 +55,7 @@ def half_swing(crank: float, pivot_distance: float) -> float:
 
 
 def time_ratio(crank: float, pivot_distance: float) -> float:
-    """Time ratio K of an oscillating slotted lever: ``K = (π + 2β)/(π − 2β)``, ``sin β = r/d``."""
+    """Time ratio K of an oscillating slotted lever: ``K = (π + 2β_s)/(π − 2β_s)``, ``sin β_s = L₁/d``."""
     beta = half_swing(crank, pivot_distance)
     return (math.pi + 2.0 * beta) / (math.pi - 2.0 * beta)
 
@@ -68,11 +68,11 @@ class LimitPositions:
     ----------
     crank_angles : tuple of float
         The crank angles φ (rad) of the two extremes, in [0, 2π); the crank turns from the first
-        to the second through the slow stroke (π + 2β) when it turns counter-clockwise.
+        to the second through the slow stroke (π + 2β_s) when it turns counter-clockwise.
     lever_angles : tuple of float
         The lever angles ξ (rad) at the two extremes.
     half_swing : float
-        β (rad).
+        β_s (rad).
     time_ratio : float
         K.
     """
@@ -88,10 +88,10 @@ def limit_positions(mechanism: SlottedLever | Shaper) -> LimitPositions:
 
     Notes
     -----
-    With γ the direction of the pivot C seen from O, the lever is tangent to the crank circle
-    at ``φ = γ ± (π/2 − β)``, and the lever angle there is ``ξ = arg(A − C)``. Counter-clockwise,
-    the crank goes from ``γ + π/2 − β`` to ``γ − π/2 + β + 2π`` through ``π + 2β`` (slow) and back
-    through ``π − 2β`` (quick).
+    With θ_OC the direction of the pivot C seen from O, the lever is tangent to the crank circle
+    at ``φ = θ_OC ± (π/2 − β_s)``, and the lever angle there is ``ξ = arg(A − C)``.
+    Counter-clockwise, the crank goes from ``θ_OC + π/2 − β_s`` to ``θ_OC − π/2 + β_s + 2π`` through
+    ``π + 2β_s`` (slow) and back through ``π − 2β_s`` (quick).
     """
     pivot = complex(*mechanism.pivot)
     r, d = mechanism.crank, abs(pivot)
@@ -110,10 +110,10 @@ class ShaperStroke:
     Attributes
     ----------
     positions : tuple of float
-        The ram's abscissa x_D (m) at the lever's two extremes (same order as
+        The ram's abscissa (m; the book's x_G, the package's joint D) at the lever's two extremes (same order as
         :class:`LimitPositions`).
     stroke : float
-        |x_D1 − x_D2| (m).
+        H, the distance between the two (m).
     time_ratio : float
         K, the lever's (the ram is at rest exactly when the lever is).
     """
@@ -129,8 +129,9 @@ def shaper_stroke(shaper: Shaper) -> ShaperStroke:
     Notes
     -----
     At an extreme lever angle ξ the lever's end is ``B = C + L₃ exp(iξ)``; the ram is where the rod
-    of length L₄ from B meets the line y = h: ``x_D = x_B + b·√((L₄ − (y_B − h))(L₄ + (y_B − h)))``.
-    The ram's velocity ``v_D`` vanishes only where B's velocity is perpendicular to the rod, that is where
+    of length l_BG from B meets the line y = y_G (``ram_height``):
+    ``x_G = x_B + σ·√((l_BG − (y_B − y_G))(l_BG + (y_B − y_G)))``, σ the shaper's ``branch``.
+    The ram's velocity ``v_G`` vanishes only where B's velocity is perpendicular to the rod, that is where
     ξ_t = 0 (or the rod is along the lever, which the assembly excludes), so these are its extremes.
     """
     limits = limit_positions(shaper)
