@@ -1,20 +1,21 @@
 """Slotted-link mechanisms (chapter 5): a block sliding in the slot of a moving link.
 
 * :class:`SlottedLever` — crank O–A, a block on the crank pin A sliding along a lever that turns
-  about the fixed pivot C = (x_C, y_C): oscillating (|OC| > r), rotating (|OC| < r) or with the
-  pivot on the crank circle (|OC| = r), where the block passes through the pivot.
-* :class:`RockerInBlock` — the guide with a moving axis: a rocker hinged to the crank pin A slides
-  through a block that swivels about the fixed point B (source 002, problem 3; an oscillating
-  hydraulic cylinder works the same way).
-* :class:`Shaper` — the slotted lever of a shaping machine: the lever's end B drives the ram D
-  through a rod along a horizontal guide.
+  about the fixed pivot C = (x_C, y_C): oscillating (|OC| > L1), rotating (|OC| < L1) or with the
+  pivot on the crank circle (|OC| = L1), where the block passes through the pivot.
+* :class:`RockerInBlock` — the guide with a moving axis: a slotted coupler hinged to the crank pin A
+  slides through a block that swivels about the fixed point C (the package's joint ``B``; source 002,
+  problem 3, calls the coupler a rocker; an oscillating hydraulic cylinder works the same way).
+* :class:`Shaper` — the slotted lever of a shaping machine: the lever's end B drives the ram G (the
+  package's joint ``D``) through a rod along a horizontal guide.
 * :class:`SlottedRockers` — two rockers with a slotted pair: the crank drives the slotted lever
-  about O₁, and the pin D of a second rocker O₂D slides in the same slot.
+  about C (the package's joint ``O1``), and the pin D of a second rocker O₂D slides in the same slot.
 * :class:`SliderOnCoupler` — a crank-slider whose coupler line carries a slider that also runs
   along a second, fixed guide; and the angle between the coupler and the slider's guide.
 
-Notation (lecture slides, Alyushin 2008; textbook 004, §5.5): crank angle φ (φ₁), lever angle ξ
-(φ₃), distance from the pivot to the block L_tek (l₃), rocker angle θ, coupler angle ψ.
+Notation of chapter 5 (the lecture's and the textbook's letters in brackets): crank angle φ (φ₁),
+lever angle ξ (φ₃), distance L from the lever's pivot to the block (L_tek, l₃), second rocker's
+angle θ_O₂D, coupler angle ψ.
 """
 
 from __future__ import annotations
@@ -163,24 +164,26 @@ class RockerInBlock(Mechanism):
     Parameters
     ----------
     crank : float
-        Crank radius r = |OA| (m) (source 002: r = 1/k).
+        Crank length L1 = |OA| (m) (source 002: r = 1/k).
     pivot : tuple of float
-        The block's fixed pivot B = (x_B, y_B) (m) (source 002: (0, d)).
+        The block's fixed pivot C = (x_C, y_C) (m), the package's joint ``B`` (source 002: (0, d)).
     reach : float, optional
-        Distance ρ from A to each end of the rocker (m): D = A + ρ·exp(iψ) beyond the block, C = A − ρ·exp(iψ)
-        on the other side of the hinge. Default ``|OB| + r``, so that the block never leaves the rocker.
+        Distance u from A to each end of the slotted coupler (m): the joint ``D`` = A + u·exp(iψ) beyond
+        the block, the joint ``C`` = A − u·exp(iψ) on the other side of the hinge. Default |OC| + L1, so
+        that the block never leaves the coupler.
 
     Notes
     -----
-    The rocker is hinged to the crank pin A, so its axis moves with A; it slides through the block at B.
-    Its angle ψ is the direction from A towards B: ψ = ξ + π, where ξ is the direction from B to A of
+    The slotted coupler (the link ``rocker``) is hinged to the crank pin A, so its axis moves with A; it
+    slides through the block at the pivot (joint ``B``). Its angle ψ is the direction from A towards the
+    pivot: ψ = ξ + π, where ξ is the direction from the pivot to A of
     :class:`SlottedLever` with the same crank and pivot; the lecture's slide "guide with a moving axis"
     writes ``tg ψ = (b − y_A)/(a − x_A)``. Joints O, A, B, C, D; links ``crank`` (O→A), ``rocker``
-    (A→B, angle ψ; ``point_on("rocker", ρ)`` gives any point of it). Slider ``B``: the block's distance
+    (A→B, angle ψ; ``point_on("rocker", u)`` gives any point of it). Slider ``B``: the block's distance
     from A along the rocker (m), with ``coriolis``, the Coriolis acceleration 2 ψ_t t_t of the block relative to
     the rocker (m/s², positive towards the rocker's left; the block's own centre does not move, so this
     term, the rocker point's acceleration and the relative one add up to zero). The block oscillates when
-    |OB| > r, rotates when |OB| < r, and when |OB| = r the rocker turns at exactly half the crank's speed (source 002)
+    |OC| > L1, rotates when |OC| < L1, and when |OC| = L1 the coupler turns at exactly half the crank's speed (source 002)
     and the block passes through the hinge A (the distance is then signed).
     """
 
@@ -188,7 +191,7 @@ class RockerInBlock(Mechanism):
     always_assembles = True
     cli_parameters = (
         Parameter("crank", "length", "crank length L1 = |OA|, m"),
-        Parameter("pivot", "pair", "the block's fixed pivot B = (x_B, y_B), m, as X,Y"),
+        Parameter("pivot", "pair", "the block's fixed pivot C = (x_C, y_C) (joint B), m, as X,Y"),
     )
     links = {"crank": "O", "rocker": "A"}
 
@@ -332,39 +335,40 @@ class Shaper(Mechanism):
 
 
 class SlottedRockers(Mechanism):
-    """Two rockers with a slotted pair: the pin D of the rocker O₂D slides in the slot of the lever O₁B.
+    """Two rockers with a slotted pair: the pin D of the rocker O₂D slides in the slot of the lever CB.
 
     Parameters
     ----------
     crank : float
-        Crank radius r = |OA| (m); the crank turns about O = (0, 0) and drives the lever through
+        Crank length L1 = |OA| (m); the crank turns about O = (0, 0) and drives the lever through
         a block on its pin A.
     pivot : tuple of float
-        The lever's pivot O₁ = (a, b) (m).
+        The lever's pivot C = (x_C, y_C) (m), the package's joint ``O1`` (the lecture's (a, b)).
     rocker_pivot : tuple of float
-        The second rocker's pivot O₂ = (m, n) (m).
+        The second rocker's pivot O₂ (m) (the lecture's (m, n)).
     rocker : float
-        The second rocker's length |O₂D| (m).
+        The second rocker's length L4 = |O₂D| (m) (the lecture's R).
     branch : int
-        +1: D is ahead of K, the foot of the perpendicular from O₂ on the lever's line (in the
-        lever's direction, from O₁ towards A); −1: behind it.
+        σ = +1: D is ahead of N, the foot of the perpendicular from O₂ on the lever's line (in the
+        lever's direction, from C towards A); −1: behind it.
 
     Notes
     -----
-    Lecture slides "two rockers with a slotted pair": the distance h from O₂ to the line O₁B, the
-    foot K, the point D and the current length O₁D = L_tek with their derivatives. Joints O, A, O1,
-    B (lever end), O2, D. Links ``crank``, ``lever`` (O₁→A, angle ξ), ``rocker`` (O₂→D, angle θ).
-    Sliders ``A`` and ``D``: distances from O₁ along the lever (m), each with ``coriolis``;
-    ``extras["O2"]`` holds h, h_t, h_tt (m, m/s, m/s²).
+    Lecture slides "two rockers with a slotted pair": the signed distance h_N from O₂ to the lever's
+    line, its foot N (the lecture's K), the point D and the current length |CD| (the lecture's L_tek)
+    with their derivatives. Joints O, A, O1 (the pivot C), B (the lever's end), O2, D. Links ``crank``,
+    ``lever`` (C→A, angle ξ), ``rocker`` (O₂→D, angle θ_O₂D). Sliders ``A`` and ``D``: distances from
+    C along the lever (m), each with ``coriolis``; ``extras["O2"]`` holds h_N, its rates (m, m/s,
+    m/s²), also given by :func:`mechanisms.analysis.slotted.distance_from_lever`.
     """
 
     cli_name = "slotted-rockers"
     cli_parameters = (
         Parameter("crank", "length", "crank length L1 = |OA|, m"),
-        Parameter("pivot", "pair", "the lever's pivot O1 = A,B (m)"),
-        Parameter("rocker_pivot", "pair", "the second rocker's pivot O2 = M,N (m)"),
+        Parameter("pivot", "pair", "the lever's pivot C = (x_C, y_C) (joint O1), m, as X,Y"),
+        Parameter("rocker_pivot", "pair", "the second rocker's pivot O2, m, as X,Y"),
         Parameter("rocker", "length", "the second rocker's length |O2 D|, m"),
-        Parameter("branch", "branch", "+1: D ahead of the foot K along the lever, -1: behind", 1),
+        Parameter("branch", "branch", "+1: D ahead of the foot N along the lever, -1: behind", 1),
     )
     links = {"crank": "O", "lever": "O1", "rocker": "O2"}
 
@@ -410,7 +414,7 @@ class SlottedRockers(Mechanism):
                         singular=block.singular | pin_d.singular)
 
     def foot(self, solution: Solution) -> PointMotion:
-        """K, the foot of the perpendicular from O₂ on the lever's line (m, m/s, m/s²)."""
+        """N, the foot of the perpendicular from O₂ on the lever's line (m, m/s, m/s²)."""
         return distance_to_line(complex(*self.rocker_pivot), complex(*self.pivot), solution.angle("lever")).foot
 
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
