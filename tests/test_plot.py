@@ -115,6 +115,28 @@ def test_figures_are_stored_as_palette_pngs_that_look_the_same():
     plt.close("all")
 
 
+
+def test_a_short_crank_keeps_its_colour_among_many_paths():
+    # forty paths in four colours (teal #17a589 among them) and a short crank in the crank's blue
+    # #1f77b4, as in chapter 4's atlas: median cut alone put the blue into the teal's box and the
+    # stored crank came out teal (no pixel of the blue left); its pixels must keep the crank's blue
+    import io
+
+    from PIL import Image
+
+    from mechanisms.plot.workarounds import palette_png
+
+    fig, ax = plt.subplots(figsize=(6, 5), dpi=100)
+    t = np.linspace(0, 2 * np.pi, 400)
+    for k in range(40):
+        ax.plot(np.cos(t) * (1 + 0.02 * k), np.sin(2 * t) * (0.5 + 0.01 * k),
+                color=("#17a589", "#8c564b", "#bcbd22", "#5d6d7e")[k % 4], lw=1.5)
+    ax.plot([0, 0.3], [0, 0.1], color="#1f77b4", lw=2)
+    stored = np.asarray(Image.open(io.BytesIO(palette_png(fig))).convert("RGB"), dtype=int)
+    assert np.sum(np.all(stored == [0x1F, 0x77, 0xB4], axis=2)) > 50
+    plt.close("all")
+
+
 def test_guides_carried_by_moving_links_are_drawn_with_them():
     from mechanisms.linkages.groups import PRP, Crank, Line
 

@@ -10,12 +10,19 @@ from __future__ import annotations
 import io
 from typing import Any
 
+from matplotlib.colors import to_rgb
 from matplotlib.figure import Figure
+
+from ..present.colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
 
 __all__ = ["PALETTE_COLOURS", "palette_png", "light_figures_in_notebooks"]
 
 PALETTE_COLOURS = 64
 """Colours of a figure stored by a notebook: the book's figures use a few dozen, plus antialiasing."""
+
+_BOOK_COLOURS = tuple(dict.fromkeys(("#000000", "#ffffff", *ROLE_COLOURS.values(), *PATH_COLOURS,
+                                     VELOCITY_COLOUR, ACCELERATION_COLOUR, BLOCK_FILL)))
+"""The book's own colours: always in a figure's palette, so that quantizing never merges two of them."""
 
 
 def palette_png(fig: Figure, colours: int = PALETTE_COLOURS) -> bytes:
@@ -23,7 +30,8 @@ def palette_png(fig: Figure, colours: int = PALETTE_COLOURS) -> bytes:
 
     A line figure of the book has a few flat colours and their antialiased edges; stored as a
     palette image (no dithering) it is three to four times lighter than matplotlib's RGBA PNG and
-    looks the same at the same resolution. Drawn as the inline backend draws it (tight bounding
+    looks the same at the same resolution; the book's own colours are always in the palette, so no
+    two of them are merged. Drawn as the inline backend draws it (tight bounding
     box, the figure's dpi, white background), then quantized by Pillow, which matplotlib itself
     depends on. Deterministic: the same figure gives the same bytes.
     """
@@ -33,7 +41,16 @@ def palette_png(fig: Figure, colours: int = PALETTE_COLOURS) -> bytes:
     fig.canvas.print_figure(buffer, format="png", bbox_inches="tight", dpi=fig.dpi, facecolor="white",
                             metadata={"Software": None})
     image = Image.open(io.BytesIO(buffer.getvalue())).convert("RGB")
-    quantized = image.quantize(colors=colours, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+    # median cut alone may merge two flat colours of the book that lie close in colour space (the
+    # crank's blue into a teal path) when one covers many more pixels: the book's colours are put
+    # into the palette first, and median cut chooses only the rest
+    fixed = [round(255 * c) for colour in _BOOK_COLOURS for c in to_rgb(colour)]
+    adaptive = image.quantize(colors=colours - len(_BOOK_COLOURS), method=Image.Quantize.MEDIANCUT,
+                              dither=Image.Dither.NONE)
+    chosen = fixed + (adaptive.getpalette() or [])[:3 * (colours - len(_BOOK_COLOURS))]
+    palette = Image.new("P", (1, 1))
+    palette.putpalette(chosen + chosen[-3:] * (256 - len(chosen) // 3))
+    quantized = image.quantize(palette=palette, dither=Image.Dither.NONE)
     out = io.BytesIO()
     quantized.save(out, format="PNG", optimize=True)
     return out.getvalue()
