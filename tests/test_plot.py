@@ -15,7 +15,7 @@ def test_draw_puts_every_joint_and_label():
     sol = yoke.solve(PHI, order=0)
     ax = plot.draw(yoke, sol, index=1)
     labels = sorted(t.get_text() for t in ax.texts)
-    assert labels == ["A", "B", "O"]
+    assert labels == ["$A$", "$B$", "$O$"]
     hinge_line = [ln for ln in ax.lines if ln.get_marker() == "o"][0]
     np.testing.assert_allclose(hinge_line.get_xdata(), [0.0, 0.1 * np.cos(PHI[1]), 0.1 * np.cos(PHI[1])], atol=1e-15)
     assert ax.get_aspect() == 1.0
@@ -157,7 +157,7 @@ def test_guides_carried_by_moving_links_are_drawn_with_them():
     k = complex(sol.point("K").value[0])
     assert min(x) < k.real < max(x) and min(y) < k.imag < max(y)   # it reaches past the block K
     offsets = {t.get_text(): t.xyann for t in ax.texts}
-    assert offsets["O"] == (-12.0, 3.0) and offsets["A"] == (5.0, 5.0)
+    assert offsets["$O$"] == (-12.0, 3.0) and offsets["$A$"] == (5.0, 5.0)
     plt.close("all")
 
 
@@ -170,3 +170,11 @@ def test_the_yokes_slot_is_drawn_and_fixed_guides_stay_in_the_scheme():
     np.testing.assert_allclose([through, angle], [0.1 * np.cos(0.5), np.pi / 2], atol=1e-15)
     crank_slider = mech.CrankSlider.example()
     assert plot.moving_guides(crank_slider, crank_slider.solve([0.5], order=0)) == []
+
+
+def test_joint_names_are_set_as_italic_points():
+    # the book writes points in italic math with digits as subscripts: A → $A$, O2 → $O_2$
+    assert plot.point_label("A") == "$A$"
+    assert plot.point_label("O2") == "$O_{2}$"
+    assert plot.point_label("A3") == "$A_{3}$"
+    assert plot.point_label("foot-1") == "foot-1"

@@ -117,7 +117,7 @@ def test_draw_plans_puts_the_mechanism_above_its_two_plans():
     fig, axes = plot_plans.draw_plans(EXAMPLE, sol, v, a)
     assert len(axes) == 3
     assert axes[1].get_title() == "velocity plan" and axes[2].get_title() == "acceleration plan"
-    assert r"$\mathrm{S}_{2}$" in [t.get_text() for t in axes[0].texts]
+    assert "$S_{2}$" in [t.get_text() for t in axes[0].texts]
     fig, axes = plot_plans.draw_plans(EXAMPLE, sol, v)
     assert len(axes) == 2
 

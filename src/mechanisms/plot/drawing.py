@@ -7,6 +7,8 @@ lines. Colours are fixed per link role (:data:`ROLE_COLOURS`); velocity vectors 
 
 from __future__ import annotations
 
+import re
+
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import matplotlib
@@ -26,6 +28,26 @@ from .workarounds import light_figures_in_notebooks
 AXIS_X, AXIS_Y = "$x$, m", "$y$, m"
 _TEX = {"φ": r"\varphi", "ψ": r"\psi", "θ": r"\theta"}
 
+
+def point_label(name: str) -> str:
+    """A joint's name as the book sets a point, in italic math: ``A`` → ``$A$``, ``O2`` → ``$O_2$``.
+
+    Parameters
+    ----------
+    name : str
+        The package's name of the joint: letters, then optional digits (a subscript).
+
+    Returns
+    -------
+    str
+        Matplotlib mathtext; a name of another form is returned as it is.
+    """
+    match = re.fullmatch(r"([A-Za-z]+?)(\d*)", name)
+    if match is None:
+        return name
+    letters, digits = match.groups()
+    return f"${letters}_{{{digits}}}$" if digits else f"${letters}$"
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -37,6 +59,7 @@ __all__ = [
     "ACCELERATION_COLOUR",
     "use_book_style",
     "draw",
+    "point_label",
     "moving_guides",
     "trajectories",
     "vectors_along",
@@ -244,8 +267,8 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
         offsets = dict(label_offset) if isinstance(label_offset, Mapping) else {}
         default = (5.0, 5.0) if isinstance(label_offset, Mapping) else label_offset
         for name, p in where.items():
-            ax.annotate(name, (p.real, p.imag), xytext=offsets.get(name, default), textcoords="offset points",
-                        fontsize=10, zorder=5)
+            ax.annotate(point_label(name), (p.real, p.imag), xytext=offsets.get(name, default),
+                        textcoords="offset points", fontsize=10, zorder=5)
     ax.set_xlabel(AXIS_X)
     ax.set_ylabel(AXIS_Y)
     return ax

@@ -20,7 +20,7 @@ from matplotlib.text import Annotation
 from ..analysis.plans import AccelerationPlan, InstantCentres, Plan, VelocityPlan
 from ..linkages.base import Block, Ground, Mechanism, Solution
 from ..present.tables import MarkdownTable, markdown_table
-from .drawing import ACCELERATION_COLOUR, ROLE_COLOURS, VELOCITY_COLOUR, draw
+from .drawing import ACCELERATION_COLOUR, ROLE_COLOURS, VELOCITY_COLOUR, draw, point_label
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -350,7 +350,7 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     for name, position in velocity.positions.items():
         if name not in solution.point_names and name != "A3":
             axes[0].plot(position.real, position.imag, "o", ms=4, color=ROLE_COLOURS["point"], zorder=5)
-            axes[0].annotate(re.sub(r"^(\D+)(\d+)$", r"$\\mathrm{\1}_{\2}$", name), (position.real, position.imag),
+            axes[0].annotate(point_label(name), (position.real, position.imag),
                              xytext=(5, -12), textcoords="offset points")
     axes[0].set_title(rf"the mechanism at $\varphi$ = {np.degrees(velocity.phi) % 360:.4g}°")
     draw_plan(velocity, ax=axes[1], title="velocity plan")
