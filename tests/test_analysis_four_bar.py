@@ -18,7 +18,7 @@ from strategies import crank_rockers, four_bar_geometries
     ((3.0, 3.5, 4.0, 1.0), "double-crank", True),
     ((3.0, 1.0, 3.5, 3.2), "double-rocker", False),
     ((3.0, 3.5, 1.0, 3.2), "rocker-crank", False),
-    ((1.0, 4.0, 1.0, 4.0), "change point", True),       # parallelogram
+    ((1.0, 4.0, 1.0, 4.0), "change-point linkage", True),       # parallelogram
     ((2.0, 2.0, 2.0, 3.0), "triple rocker", False),
 ])
 def test_grashof_classes(lengths, name, rotates):

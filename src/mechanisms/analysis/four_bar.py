@@ -72,7 +72,7 @@ def grashof_class(crank: float, coupler: float, rocker: float, frame: float,
     """Grashof's classification from the four lengths (m).
 
     ``tolerance`` is relative to the sum of the lengths: within it, L_s + L_l = L_p + L_q counts as a
-    change point. If two links are equally shortest, the first in the order crank, frame,
+    change-point linkage (one that passes change points). If two links are equally shortest, the first in the order crank, frame,
     coupler, rocker names the class.
     """
     lengths = {name: require_length(name, value)
@@ -82,7 +82,7 @@ def grashof_class(crank: float, coupler: float, rocker: float, frame: float,
     shortest = min(lengths, key=lambda name: lengths[name])
     scale = sum(ordered)
     if abs(margin) <= tolerance * scale:
-        name = "change point"
+        name = "change-point linkage"
     elif margin > 0:
         name = _NAMES[shortest]
     else:

@@ -210,7 +210,7 @@ def check_design(design: CouplerOutputDesign, positions: int = 3600) -> DesignCh
     """
     mechanism = design.four_bar()
     kind = grashof_class(*mechanism.lengths)
-    if not kind.crank_rotates or kind.name == "change point":
+    if not kind.crank_rotates or kind.name == "change-point linkage":
         return DesignCheck(kind.name, kind.crank_rotates, True, np.array([]), math.nan, math.nan, math.nan, 0.0)
     start = -0.25 * design.return_angle
     phi = start + np.linspace(0.0, 2.0 * math.pi, positions + 1)
@@ -247,7 +247,7 @@ def largest_rotatable_angle(time_ratio: float, rocker: float = 1.0, tolerance: f
     def rotates(gamma: float) -> bool:
         design = synthesize_coupler_output(time_ratio, gamma, rocker, corrected=True)
         kind = grashof_class(design.crank, design.coupler, design.rocker, math.hypot(*design.frame))
-        return kind.crank_rotates and kind.name != "change point"
+        return kind.crank_rotates and kind.name != "change-point linkage"
 
     if not rotates(lo):
         raise InvalidParameterError("time_ratio", time_ratio,
