@@ -322,3 +322,24 @@ def test_four_bar_at_the_ends_of_its_own_intervals(lengths, frame):
         sol = m.solve(ends, 1.0)
     w = sol.angle("rocker").omega
     assert np.all(sol.singular | (np.abs(w) < 1e4))
+
+
+def test_an_undetermined_slider_velocity_is_nan_and_an_unbounded_one_inf():
+    import warnings
+
+    from mechanisms import CrankSlider
+    # L2 = L1 + e exactly: at φ = −90° the pin is L2 below the guide and moves along it (its velocity
+    # across the guide is zero), so the rates are 0/0; the one-sided velocities are 1 ∓ 1.2247 m/s
+    # (by hand: s_t = ω(−L1 sin φ ∓ L1 cos φ·(L1 sin φ − e)/c_B) → 1 ∓ √1.5 as φ → −90°)
+    m = CrankSlider(crank=1.0, rod=1.5, offset=0.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sol = m.solve(np.radians([-90.0]) + np.array([-1e-5, 0.0, 1e-5]), omega=1.0)
+        v = sol.slider("B").velocity
+        assert sol.singular.tolist() == [False, True, False]
+        assert np.isnan(v[1]) and np.isnan(sol.angle("coupler").omega[1])
+        assert sorted(v[[0, 2]]) == pytest.approx([1 - np.sqrt(1.5), 1 + np.sqrt(1.5)], abs=5e-3)
+        # the ends of a rocking range (L2 < L1): there the rates are truly unbounded
+        rocking = CrankSlider(crank=1.0, rod=0.8)
+        ends = rocking.solve(np.array(rocking.assembly_intervals()[0]), omega=1.0)
+        assert np.all(np.isinf(ends.slider("B").velocity)) and ends.singular.all()

@@ -36,6 +36,9 @@ __all__ = ["SliderOnLine", "slider_on_line"]
 _REACH_TOLERANCE = 8.0 * np.finfo(float).eps
 _SINGULAR_FACTOR = 100.0
 """w² below this many times its round-off is a singular position (w ≲ 6e-7·rod for unit sizes)."""
+_STILL_FACTOR = 64.0 * np.finfo(float).eps
+"""At a singular position, a velocity of J across the guide below this fraction of J's speed is zero
+to round-off: J then moves along the guide and the rates are 0/0, undetermined (``nan``), not unbounded."""
 
 
 @dataclass(frozen=True)
@@ -112,7 +115,8 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
 
     from differentiating ``w² + h² = rod²`` and ``rod·sin(θ − δ) = −h`` (chapter 3). Where
     ``w = 0`` (the rod perpendicular to the guide) the derivatives divide by zero: they are unbounded
-    (``±inf``) or undefined (``nan`` if J moves parallel to the guide there), and ``singular`` marks
+    (``±inf``) or undefined (``nan`` if J moves along the guide there, its velocity across the guide
+    zero to round-off, so that the rates are 0/0), and ``singular`` marks
     them; so does a w² within 100 times its round-off of zero, where the computed w is mostly
     round-off and would give huge finite rates (the crank angles of a limit of assembly, found
     by an arcsin, land there). A joint beyond reach by more than the round-off of
@@ -156,6 +160,11 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     with np.errstate(divide="ignore", invalid="ignore"):
         local_t = e_conj * joint.velocity
         u_t, h_t = local_t.real, local_t.imag
+        # at a singular position where J moves along the guide (h_t zero to round-off: h passes its
+        # extreme there, the limiting geometry L2 = L1 + |e|) the rates are 0/0: the constraints do not
+        # fix them, and the one-sided limits differ; nan says so, where a round-off h_t would give ±inf
+        still = singular & (np.abs(h_t) <= _STILL_FACTOR * np.abs(joint.velocity))
+        h_t = np.where(still, np.nan, h_t)
         w_t = -h * h_t / w
         s_t = u_t + branch * w_t
         theta_t = -branch * h_t / w
