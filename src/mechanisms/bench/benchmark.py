@@ -601,6 +601,8 @@ def cost_against_size(mechanism: Mechanism, sizes: Sequence[int], repeat: int = 
 
 # --- figures for chapter 9 -------------------------------------------------------------------------
 
+_METHOD_NAMES = {"newton": "Newton's method", "central difference": "central differences"}
+_ERROR_UNITS = {"positions": "rad, m", "velocities": "1/s, m/s", "accelerations": "1/s², m/s²"}
 _METHOD_STYLE = {"closed form": ("o", "#1f77b4"), "newton": ("s", "#ff7f0e"),
                  "central difference": ("^", "#2ca02c"), "memory floor": ("", "#7f7f7f"),
                  "pylinkage step_fast": ("D", "#d62728"), "pylinkage step": ("v", "#9467bd")}
@@ -623,16 +625,20 @@ def plot_work_precision(rows: list[dict], axes=None):
                 continue
             x = [r["ns_per_position"] for r in chosen]
             y = [max(r["error"], 1e-17) for r in chosen]
-            ax.plot(x, y, marker=marker, color=colour, ls="-" if len(chosen) > 1 else "", label=method)
-            for (xi, yi), text in _labels(chosen, x, y):
-                ax.annotate(text, (xi, yi), xytext=(4, 2), textcoords="offset points", fontsize=7, color=colour)
+            ax.plot(x, y, marker=marker, color=colour, ls="-" if len(chosen) > 1 else "",
+                    label=_METHOD_NAMES.get(method, method))
+            for (xi, yi), text, last in _labels(chosen, x, y):
+                # Newton's last (rightmost) point has its label on its left, inside the panel
+                last = last and method == "newton"
+                ax.annotate(text, (xi, yi), xytext=(-6, -9) if last else (5, 2), textcoords="offset points",
+                            fontsize=7, color=colour, ha="right" if last else "left")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.margins(x=0.25)  # room for the labels of the rightmost points
+        ax.margins(x=0.15)
         ax.xaxis.set_minor_formatter(plt.NullFormatter())
-        ax.set_title(quantity)
+        ax.set_title(f"{quantity} ({_ERROR_UNITS[quantity]})")
         ax.set_xlabel("time per position, ns")
-    axes[0].set_ylabel("largest error (rad, m; per s, per s²)")
+    axes[0].set_ylabel("largest error")
     figure = axes[0].figure
     handles, names = axes[-1].get_legend_handles_labels()
     figure.legend(handles, names, loc="lower center", ncol=len(names), fontsize=8, frameon=False)
@@ -640,18 +646,24 @@ def plot_work_precision(rows: list[dict], axes=None):
     return axes
 
 
-def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tuple[float, float], str]]:
-    """The parameters of a method's points as labels; points whose errors are within a factor of
-    three of each other (Newton's tolerances once at round-off) share one label, so none overlap."""
-    labels: list[tuple[tuple[float, float], str]] = []
+def _labels(chosen: list[dict], x: list[float], y: list[float]) -> list[tuple[tuple[float, float], str, bool]]:
+    """The parameters of a method's points as labels, with a flag for the last one; points whose
+    errors are within a factor of three of each other (Newton's tolerances once at round-off) share one
+    label (``tol = 10⁻⁸ … 10⁻¹⁴``), so none overlap."""
+    groups: list[tuple[tuple[float, float], list[dict]]] = []
     for r, xi, yi in zip(chosen, x, y):
         if r["parameter"] is None:
             continue
-        text = setting_label(r["method"], r["parameter"])
-        if labels and 1 / 3 < yi / labels[-1][0][1] < 3:
-            labels[-1] = (labels[-1][0], f"{labels[-1][1]}, {text}")
+        if groups and 1 / 3 < yi / groups[-1][0][1] < 3:
+            groups[-1][1].append(r)
         else:
-            labels.append(((xi, yi), text))
+            groups.append(((xi, yi), [r]))
+    labels = []
+    for k, (where, rows) in enumerate(groups):
+        text = setting_label(rows[0]["method"], rows[0]["parameter"])
+        if len(rows) > 1:
+            text = text[:-1] + rf" \ldots\ 10^{{{math.log10(rows[-1]['parameter']):.0f}}}$"
+        labels.append((where, text, k == len(groups) - 1))
     return labels
 
 
@@ -686,8 +698,10 @@ def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=N
         _, ax = plt.subplots(figsize=(6, 4))
     h = np.asarray(steps, dtype=float)
     eps = np.finfo(float).eps
-    for (name, values), colour, power in zip(errors.items(), ("#1f77b4", "#d62728"), (1, 2)):
-        ax.loglog(h, values, "o-", color=colour, label=f"{name}: error")
+    # the velocities drawn over the accelerations, smaller: for large steps the two errors coincide
+    for (name, values), colour, power, size, z in zip(errors.items(), ("#1f77b4", "#d62728"), (1, 2),
+                                                      (4, 7), (3, 2)):
+        ax.loglog(h, values, "o-", color=colour, ms=size, zorder=z, label=f"{name}: error")
         truncation = values[0] * (h / h[0]) ** 2
         roundoff = (1 if power == 1 else 4) * eps / h**power
         ax.loglog(h, truncation, ":", color=colour, lw=1)
