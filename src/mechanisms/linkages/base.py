@@ -317,8 +317,9 @@ class Mechanism(ABC):
         solution = self._solve(crank, order) if inner is None else inner._solve(crank, order).scaled(scale)
         if solution.singular.any() and (order or not _finite_at(solution, solution.singular)):
             warnings.warn(
-                f"{type(self).__name__}: velocities/accelerations are unbounded (a singular position) at crank "
-                f"angle(s) {describe_angles(solution.phi[solution.singular])}; see Solution.singular",
+                f"{type(self).__name__}: velocities/accelerations are unbounded or undetermined (a singular "
+                f"position) at crank angle(s) {describe_angles(solution.phi[solution.singular])}; "
+                "see Solution.singular",
                 SingularPositionWarning, stacklevel=2)
         return solution
 
