@@ -156,14 +156,14 @@ def line_intersection(first_point: PointMotion | complex, first_angle: AngleMoti
     first_point, second_point : PointMotion or complex
         A point Q₁, Q₂ on each line (m), moving or fixed.
     first_angle, second_angle : AngleMotion or float
-        The directions θ₁, θ₂ of the lines (rad), moving or fixed.
+        The directions β₁, β₂ of the lines (rad), moving or fixed.
     angles : array_like, optional
         Crank angles (rad), only to name positions in an :class:`AssemblyError`.
 
     Returns
     -------
     LineIntersection
-        Where the lines are parallel to within round-off (|sin(θ₂ − θ₁)| ≤ 1e-12) there is no single
+        Where the lines are parallel to within round-off (|sin(β₂ − β₁)| ≤ 1e-12) there is no single
         intersection: those positions are flagged ``singular`` and their values are ``nan``.
 
     Notes
@@ -171,7 +171,7 @@ def line_intersection(first_point: PointMotion | complex, first_angle: AngleMoti
     With ``D = Q₂ − Q₁`` and the cross product ``a × b = Im(ā b)``, taking the cross product of
     ``Q₁ + s₁ e₁ = Q₂ + s₂ e₂`` with ``e₂`` and with ``e₁`` gives
 
-    ``s₁ = (D × e₂) / (e₁ × e₂)``,  ``s₂ = (D × e₁) / (e₁ × e₂)``,  ``e₁ × e₂ = sin(θ₂ − θ₁)``.
+    ``s₁ = (D × e₂) / (e₁ × e₂)``,  ``s₂ = (D × e₁) / (e₁ × e₂)``,  ``e₁ × e₂ = sin(β₂ − β₁)``.
 
     The numerators and the denominator are differentiated by Leibniz's rule and the quotients by
     the quotient rule; ``K = Q₁ + s₁ e₁`` likewise. The lecture's slide "slider on a coupler with a
