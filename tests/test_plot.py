@@ -178,3 +178,11 @@ def test_joint_names_are_set_as_italic_points():
     assert plot.point_label("O2") == "$O_{2}$"
     assert plot.point_label("A3") == "$A_{3}$"
     assert plot.point_label("foot-1") == "foot-1"
+
+
+def test_draw_writes_the_pages_own_letters_for_the_joints_it_is_given():
+    yoke = ScotchYoke(0.1)
+    ax = plot.draw(yoke, yoke.solve(PHI, order=0), labels={"A": "E"})
+    texts = sorted(t.get_text() for t in ax.texts)
+    assert "$E$" in texts and "$A$" not in texts and "$O$" in texts
+    plt.close("all")

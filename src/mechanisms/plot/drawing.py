@@ -207,7 +207,8 @@ def _extent(solution: Solution) -> float:
     return float(span) or 1.0
 
 
-def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | None = None, labels: bool = True,
+def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | None = None,
+         labels: bool | Mapping[str, str] = True,
          size: float | None = None, guide_half_length: float | None = None,
          label_offset: tuple[float, float] | Mapping[str, tuple[float, float]] = (5.0, 5.0)) -> Axes:
     """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
@@ -226,13 +227,14 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
         Which crank position of the solution to draw.
     ax : matplotlib Axes, optional
         Where to draw; a new figure if omitted.
-    labels : bool
-        Write the joint names next to the joints.
+    labels : bool or dict
+        Write the joint names next to the joints; a dict ``{package name: page letter}`` writes the
+        page's own letters for the joints it lists (``{"L": "E"}``), the package's names for the others.
     size : float, optional
         Size of hinges and symbols (m); by default 3 % of the mechanism's extent.
     label_offset : (float, float) or dict
         Where the joint names sit relative to their joints, in points; a dict ``{joint: (dx, dy)}``
-        moves the names it lists and leaves the others at (5, 5).
+        (by package name) moves the names it lists and leaves the others at (5, 5).
 
     Returns
     -------
@@ -266,8 +268,10 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
     if labels:
         offsets = dict(label_offset) if isinstance(label_offset, Mapping) else {}
         default = (5.0, 5.0) if isinstance(label_offset, Mapping) else label_offset
+        letters = labels if isinstance(labels, Mapping) else {}
         for name, p in where.items():
-            ax.annotate(point_label(name), (p.real, p.imag), xytext=offsets.get(name, default),
+            ax.annotate(point_label(letters.get(name, name)), (p.real, p.imag),
+                        xytext=offsets.get(name, default),
                         textcoords="offset points", fontsize=10, zorder=5)
     ax.set_xlabel(AXIS_X)
     ax.set_ylabel(AXIS_Y)
