@@ -197,3 +197,41 @@ def test_vector_table_lists_every_vector_with_its_segment_length_and_direction()
     assert lines[2] == "| $v_{A}$ | $pa$ | 17.20 | 86.00 | 120.0 |"
     only_velocities = plot_plans.vector_table(v)._repr_markdown_().splitlines()[0]
     assert "magnitude, m/s |" in only_velocities
+
+
+@pytest.mark.parametrize("case", ["shaper", "slotted lever at 0°"])
+def test_every_letter_is_nearest_to_its_own_vertex_and_every_name_beside_its_vector(case):
+    # chapter 10's shaper at 330° (a′ beside k, a^r by the short k → a3′, a^t along π a3′) and
+    # exercise 10.3's lever at 0° (a3 beside b): a reader takes a letter for the nearest vertex
+    machines = {"shaper": (mech.Shaper(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22),
+                           330.0, (9.5, 10.0)),
+                "slotted lever at 0°": (mech.SlottedLever(crank=0.1, pivot=(0.0, 0.3)), 0.0, (8.0, 7.4))}
+    m, phi, size = machines[case]
+    sol = m.solve(np.radians([phi]), omega=10.0)
+    v = plans.velocity_plan(m, sol)
+    a = plans.acceleration_plan(m, sol, velocity=v)
+    fig, axes = plot_plans.draw_plans(m, sol, v, a, figsize=size)
+    fig.canvas.draw()
+    for ax, plan in zip(axes[1:], (v, a)):
+        drawn = {plot_plans.vertex_label(label): plan.drawn(label) for label in plan.vertices}
+        lines = {plot_plans.vector_label(x.latex): (plan.drawn(x.tail), plan.drawn(x.head))
+                 for x in plan.vectors if abs(plan.drawn(x.head) - plan.drawn(x.tail)) > 1e-9}
+        placed = {t.get_text(): complex(*t.get_position()) for t in ax.texts}
+        boxes = {t.get_text(): t.get_window_extent().transformed(ax.transData.inverted()) for t in ax.texts}
+        for letter, point in drawn.items():
+            if letter not in placed:                 # shares a label with a vertex at the same place
+                continue
+            others = [abs(placed[letter] - z) for name, z in drawn.items() if abs(z - point) > 1.0]
+            assert abs(placed[letter] - point) < min(others), letter
+        t = np.linspace(0.0, 1.0, 101)
+        for name, (tail, head) in lines.items():
+            if name not in placed:                   # an absolute vector, or too short to be named
+                continue
+            box = boxes[name]                        # the distance from the name's box to each line
+            gaps = {}
+            for other, (p, q) in lines.items():
+                z = p + t * (q - p)
+                dx = np.maximum(np.maximum(box.x0 - z.real, z.real - box.x1), 0.0)
+                dy = np.maximum(np.maximum(box.y0 - z.imag, z.imag - box.y1), 0.0)
+                gaps[other] = np.min(np.hypot(dx, dy))
+            assert gaps[name] < 7.5, name           # beside its own vector, mm of the drawing

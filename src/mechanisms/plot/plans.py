@@ -136,6 +136,14 @@ def _arrow(ax: Axes, tail: complex, head: complex, colour: str, style: str, widt
                             "shrinkA": 0, "shrinkB": 0, "mutation_scale": 12}, zorder=zorder)
 
 
+def _box_distance(centre: complex, half: tuple[float, float], points: Any) -> float:
+    """The distance from a text's box (centre, half width and height, mm) to the nearest of ``points``."""
+    z = np.atleast_1d(np.asarray(points, dtype=complex))
+    dx = np.maximum(np.abs(z.real - centre.real) - half[0], 0.0)
+    dy = np.maximum(np.abs(z.imag - centre.imag) - half[1], 0.0)
+    return float(np.min(np.hypot(dx, dy)))
+
+
 class _Placer:
     """Places the letters of a plan where they cover no other letter, no vertex and as little line as can be.
 
@@ -159,7 +167,8 @@ class _Placer:
         pad = 0.25 * text.get_fontsize() * self.ax.figure.dpi / 72      # the white box's padding, and a gap
         return ((box.width / 2 + pad) * self.mm_per_pixel, (box.height / 2 + pad) * self.mm_per_pixel)
 
-    def cost(self, centre: complex, half: tuple[float, float], skip: int | None = None) -> float:
+    def cost(self, centre: complex, half: tuple[float, float], skip: int | None = None,
+             owner: complex | None = None) -> float:
         hw, hh = half
         left, right, bottom, top = centre.real - hw, centre.real + hw, centre.imag - hh, centre.imag + hh
         area = 4 * hw * hh
@@ -179,19 +188,42 @@ class _Placer:
             z = a + t * (b - a)
             inside = (z.real > left) & (z.real < right) & (z.imag > bottom) & (z.imag < top)
             total += 3.0 * inside.mean() * abs(b - a) / hh
+        total += self.misleading(centre, half, skip, owner)
         x0, x1, y0, y1 = self.limits               # inside the axes
         outside = max(0.0, x0 - left) + max(0.0, right - x1) + max(0.0, y0 - bottom) + max(0.0, top - y1)
         return total + 50.0 * outside / hh
 
+    def misleading(self, centre: complex, half: tuple[float, float], skip: int | None,
+                   owner: complex | None) -> float:
+        """A penalty for a letter nearer to another vertex, or a vector's name nearer to another vector.
+
+        A reader takes a letter for the name of the vertex nearest to its middle, and a vector's name
+        for that of the line nearest to it; ``owner`` is the letter's own vertex, ``skip`` the index
+        of the named vector. A letter's own vertex must be the nearest by 1 mm of the drawing; a
+        vector's name may be as near (within 2 mm) to a line it runs along, as a component along an
+        absolute vector does.
+        """
+        if owner is not None:
+            others = [abs(centre - dot) for dot in self.dots if abs(dot - owner) > self.dot]
+            return 25.0 if others and min(others) < abs(centre - owner) + 1.0 else 0.0
+        if skip is not None:
+            t = np.linspace(0.0, 1.0, 41)
+            along = [a + t * (b - a) for a, b in self.segments]
+            own = _box_distance(centre, half, along[skip])
+            others = [_box_distance(centre, half, z) for k, z in enumerate(along) if k != skip]
+            return 40.0 if others and min(others) < own - 2.0 else 0.0
+        return 0.0
+
     def place(self, text: Any, candidates: list[tuple[complex, float]], skip: int | None = None,
-              optional: bool = False) -> None:
+              optional: bool = False, owner: complex | None = None) -> None:
         """Move ``text`` to the best of the candidate centres (each with its own penalty).
 
         An ``optional`` text (a vector's name) that would cover a letter or a vertex wherever it went
         is removed instead.
         """
         half = self.half_size(text)
-        best, score = min(((c, self.cost(c, half, skip) + p) for c, p in candidates), key=lambda cs: cs[1])
+        best, score = min(((c, self.cost(c, half, skip, owner) + p) for c, p in candidates),
+                          key=lambda cs: cs[1])
         if optional and score >= 50.0:
             text.remove()
             return
@@ -276,7 +308,8 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
             continue
         style, width = _STYLE[vector.kind]
         shade = colour if vector.kind == "absolute" else ROLE_COLOURS[LINK_ROLES.get(vector.link, "coupler")]
-        _arrow(ax, tail, head, shade, style, width, 4 if vector.kind == "absolute" else 3)
+        # a component is drawn over the (wider) absolute vector it may lie along, so both show
+        _arrow(ax, tail, head, shade, style, width, 3 if vector.kind == "absolute" else 4)
         segments.append((tail, head))
         if names and vector.kind != "absolute" and abs(head - tail) >= 3.0 * label_offset:
             named.append((len(segments) - 1, vector, shade))
@@ -316,7 +349,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         away = away / abs(away) if abs(away) > 1e-9 else 1j
         text = ax.text(point.real, point.imag, ", ".join(vertex_label(label) for label in group), fontsize=11,
                        ha="center", va="center", zorder=7, bbox=_LABEL_BOX)
-        placer.place(text, placer.around(text, point, away))
+        placer.place(text, placer.around(text, point, away), owner=point)
     for index, vector, shade in named:
         tail, head = drawn[vector.tail], drawn[vector.head]
         name = vector_label(vector.latex)
