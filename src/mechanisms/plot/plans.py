@@ -211,7 +211,7 @@ class _Placer:
             along = [a + t * (b - a) for a, b in self.segments]
             own = _box_distance(centre, half, along[skip])
             others = [_box_distance(centre, half, z) for k, z in enumerate(along) if k != skip]
-            return 40.0 if others and min(others) < own - 2.0 else 0.0
+            return 8.0 if others and min(others) < own - 2.0 else 0.0
         return 0.0
 
     def place(self, text: Any, candidates: list[tuple[complex, float]], skip: int | None = None,
