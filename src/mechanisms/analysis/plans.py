@@ -216,18 +216,12 @@ class PlanVector:
 
 
 class Reading(NamedTuple):
-    """A vector read off a plan: what a ruler and a protractor give (:meth:`Plan.read`).
-
-    Attributes
-    ----------
-    magnitude : float
-        Its drawn length times the scale μ (m/s or m/s²).
-    direction_deg : float
-        Its direction in degrees, counter-clockwise from +x, in [0, 360).
-    """
+    """A vector read off a plan: what a ruler and a protractor give (:meth:`Plan.read`)."""
 
     magnitude: float
+    """Its drawn length times the scale μ (m/s or m/s²)."""
     direction_deg: float
+    """Its direction in degrees, counter-clockwise from +x, in [0, 360)."""
 
 
 @dataclass(frozen=True)
