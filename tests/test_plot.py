@@ -2,6 +2,7 @@
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pytest
 
 import mechanisms as mech
 from mechanisms import plot
@@ -157,7 +158,12 @@ def test_guides_carried_by_moving_links_are_drawn_with_them():
     k = complex(sol.point("K").value[0])
     assert min(x) < k.real < max(x) and min(y) < k.imag < max(y)   # it reaches past the block K
     offsets = {t.get_text(): t.xyann for t in ax.texts}
-    assert offsets["$O$"] == (-12.0, 3.0) and offsets["$A$"] == (5.0, 5.0)
+    assert offsets["$O$"] == (-12.0, 3.0)
+    # a name not listed sits 10 points from its joint, away from its bars: A's, not along A → O
+    a = complex(*offsets["$A$"])
+    assert abs(a) == pytest.approx(10.0)
+    toward_o = -sol.point("A").value[0]
+    assert abs(np.angle(a / toward_o)) >= np.pi / 4 - 1e-12
     plt.close("all")
 
 

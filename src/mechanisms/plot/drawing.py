@@ -201,6 +201,17 @@ def _moving_guide_symbol(ax: Axes, through: complex, angle: float, blocks: list[
             label="_nolegend_")
 
 
+def _free_side(spokes: list[complex], distance: float = 10.0) -> tuple[float, float]:
+    """An offset (points) for a joint's name: of eight directions, the one farthest from every spoke
+    (the directions of the joint's bars and of its pivot symbol); up-right first among equals."""
+    candidates = [np.exp(1j * np.pi * k / 4) for k in (1, 3, 7, 5, 0, 2, 4, 6)]
+    if spokes:
+        best = max(candidates, key=lambda c: min(abs(np.angle(c / s)) for s in spokes))
+    else:
+        best = candidates[0]
+    return (distance * best.real, distance * best.imag)
+
+
 def _extent(solution: Solution) -> float:
     points = np.concatenate([np.ravel(solution.point(n).value) for n in solution.point_names])
     span = np.ptp(points.real) + np.ptp(points.imag) if points.size else 1.0
@@ -210,7 +221,7 @@ def _extent(solution: Solution) -> float:
 def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | None = None,
          labels: bool | Mapping[str, str] = True,
          size: float | None = None, guide_half_length: float | None = None,
-         label_offset: tuple[float, float] | Mapping[str, tuple[float, float]] = (5.0, 5.0)) -> Axes:
+         label_offset: tuple[float, float] | Mapping[str, tuple[float, float]] | None = None) -> Axes:
     """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
 
     A guide fixed to the frame is drawn hatched; a guide or slot carried by a moving link
@@ -233,8 +244,9 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
     size : float, optional
         Size of hinges and symbols (m); by default 3 % of the mechanism's extent.
     label_offset : (float, float) or dict
-        Where the joint names sit relative to their joints, in points; a dict ``{joint: (dx, dy)}``
-        (by package name) moves the names it lists and leaves the others at (5, 5).
+        Where the joint names sit relative to their joints, in points: one ``(dx, dy)`` for all, or a
+        dict ``{joint: (dx, dy)}`` (by package name) for the names it lists. By default a name sits on
+        the side of its joint that is farthest from the joint's bars and pivot symbol.
 
     Returns
     -------
@@ -246,14 +258,21 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
     guide_half_length = guide_half_length or 0.6 * _extent(solution)
     artists: list[Any] = []
     roles: dict[str, str] = {}
+    spokes: dict[str, list[complex]] = {name: [] for name in where}   # directions taken at each joint
     for item in mechanism.scheme():
         if isinstance(item, Guide):
             _guide_symbol(ax, item.through, item.angle, guide_half_length, size)
         elif isinstance(item, Ground):
             _pivot_symbol(ax, where[item.joint], size)
+            spokes[item.joint].append(-1j)                    # the pivot symbol hangs below
         elif isinstance(item, Bar):
             roles[item.link] = item.role
             pts = [where[j] for j in item.joints]
+            for first, second in zip(item.joints, item.joints[1:]):
+                if where[second] != where[first]:
+                    direction = (where[second] - where[first]) / abs(where[second] - where[first])
+                    spokes[first].append(direction)
+                    spokes[second].append(-direction)
             artists += ax.plot([p.real for p in pts], [p.imag for p in pts], color=ROLE_COLOURS.get(item.role, "k"),
                                lw=3.0, solid_capstyle="round", zorder=2, label="_nolegend_", gid=item.link)
         elif isinstance(item, Block):
@@ -267,12 +286,16 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
     ax.plot(hinges.real, hinges.imag, "o", ms=6, mfc="white", mec="black", mew=1.2, zorder=4)
     if labels:
         offsets = dict(label_offset) if isinstance(label_offset, Mapping) else {}
-        default = (5.0, 5.0) if isinstance(label_offset, Mapping) else label_offset
         letters = labels if isinstance(labels, Mapping) else {}
+        common: tuple[float, float] | None = (
+            None if label_offset is None or isinstance(label_offset, Mapping) else label_offset)
         for name, p in where.items():
-            ax.annotate(point_label(letters.get(name, name)), (p.real, p.imag),
-                        xytext=offsets.get(name, default),
-                        textcoords="offset points", fontsize=10, zorder=5)
+            fixed = offsets.get(name, common)
+            offset = fixed if fixed is not None else _free_side(spokes[name])
+            centred = "left" if fixed is not None else "center"
+            ax.annotate(point_label(letters.get(name, name)), (p.real, p.imag), xytext=offset,
+                        textcoords="offset points", fontsize=10, zorder=5, ha=centred,
+                        va="baseline" if fixed is not None else "center")
     ax.set_xlabel(AXIS_X)
     ax.set_ylabel(AXIS_Y)
     return ax
