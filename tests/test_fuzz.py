@@ -316,3 +316,16 @@ def test_a_range_shorter_than_a_step_is_one_row_in_every_format(fmt, angles):
         assert len(out.strip().splitlines()) == 1 + count
     else:
         assert f"{start:.1f}" in out
+
+
+def test_a_linkage_files_branch_given_as_an_array_is_refused_by_name():
+    from mechanisms import MechanismError
+    from mechanisms.linkages.linkage_file import linkage_from_dict
+    data = {"name": "four-bar", "frame": {"O": [0.0, 0.0], "C": [0.4, 0.0]},
+            "crank": {"pivot": "O", "pin": "A", "length": 0.1},
+            "dyad": [{"type": "RRR", "joint": "B", "from": ["A", "C"], "lengths": [0.35, 0.3],
+                      "branch": np.array([1.0, 2.0])}]}
+    with pytest.raises(MechanismError, match="branch"):
+        linkage_from_dict(data)
+    data["dyad"][0]["branch"] = np.int64(-1)        # a numpy integer is a number
+    assert linkage_from_dict(data) is not None

@@ -87,6 +87,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
+import numpy as np
+
 from ..core.errors import MechanismError, StructureError
 from .composed import Linkage
 from .groups import PRP, RPP, RPR, RRP, RRR, Crank, Group, Line, LinkPoint, Triad
@@ -177,7 +179,9 @@ class _Where:
 
     def branch(self, table: Mapping[str, Any], key: str = "branch") -> int:
         value = table.get(key, 1)
-        if isinstance(value, bool) or value not in (1, -1):
+        # an int or a float, never a bool or an array (whose comparison has no single truth value)
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+                or value not in (1, -1):
             raise self.error(f"must be +1 or -1: got {value!r}", key)
         return int(value)
 
