@@ -39,10 +39,16 @@ def run(path: pathlib.Path) -> float:
     start = time.perf_counter()
     NotebookClient(nb, kernel_name="python3", timeout=600, record_timing=False,
                    resources={"metadata": {"path": str(path.parent)}}).execute()
-    for cell in nb.cells:
+    for index, cell in enumerate(nb.cells):
         cell.metadata.pop("execution", None)
         if cell.cell_type == "code":
             cell.outputs = joined_streams(cell.outputs)
+            # an error raised while a figure is displayed (IPython's formatters, e.g. bad mathtext in a
+            # label) becomes an error output without failing the cell: never store one
+            errors = [o for o in cell.outputs if o.get("output_type") == "error"]
+            if errors:
+                sys.exit(f"{path}: cell {index} stored an error output, {errors[0].get('ename')}: "
+                         f"{errors[0].get('evalue', '')[:200]} (the notebook was not written)")
     nbformat.write(nb, path)
     return time.perf_counter() - start
 
