@@ -192,3 +192,18 @@ def test_draw_writes_the_pages_own_letters_for_the_joints_it_is_given():
     texts = sorted(t.get_text() for t in ax.texts)
     assert "$E$" in texts and "$A$" not in texts and "$O$" in texts
     plt.close("all")
+
+
+def test_vector_key_states_each_scale_in_the_book_s_units():
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1], label="$B$")
+    legend = plot.vector_key(ax, scale_velocity=0.04, scale_acceleration=6e-6, of="$P$")
+    texts = [text.get_text() for text in legend.get_texts()]
+    assert texts == ["$B$", "velocity of $P$: 0.04 m per m/s", r"acceleration of $P$: $6\cdot10^{-6}$ m per m/s²"]
+    colours = [handle.get_color() for handle in legend.legend_handles[1:]]
+    assert colours == [plot.VELOCITY_COLOUR, plot.ACCELERATION_COLOUR]
+    only = plot.vector_key(plt.subplots()[1], scale_acceleration=1e-5)
+    assert [text.get_text() for text in only.get_texts()] == ["acceleration: $10^{-5}$ m per m/s²"]
+    with pytest.raises(mech.InvalidParameterError, match="scale_velocity"):
+        plot.vector_key(ax, scale_velocity=-1.0)
+    plt.close("all")

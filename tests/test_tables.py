@@ -1,6 +1,7 @@
 """Markdown tables for people (present/tables.py): every expected string written by hand."""
 
 import numpy as np
+import pytest
 
 import mechanisms as mech
 
@@ -45,3 +46,27 @@ def test_number_prints_no_negative_zero_and_none_as_a_dash():
 def test_markdown_table_prints_none_as_a_dash():
     from mechanisms import markdown_table
     assert markdown_table(["x"], [[None], [1.0]], ".1f").text.splitlines()[2:] == ["| — |", "| 1.0 |"]
+
+
+def test_show_messages_prints_a_warning_and_an_error_of_the_package_and_goes_on(capsys):
+    # by hand: L2 = 0.08 < L1 = 0.1 (axial), so |sin φ| ≤ 0.8: two ranges, ±53.13° and 180° ∓ 53.13°;
+    # φ = 90° lies in neither
+    with mech.show_messages(width=1000):
+        mech.CrankSlider(crank=0.1, rod=0.08).solve(np.radians([0.0, 90.0]), omega=1.0)
+    assert capsys.readouterr().out == (
+        "AssemblyError: the rod cannot reach the guide (rod = 0.08 m < crank + |offset| = 0.1 m, so the crank "
+        "cannot turn fully) at crank angle(s) 90°; it assembles only for crank angles in [-53.13°, 53.13°] and "
+        "[126.87°, 233.13°], mod 360°\n")
+    # by hand: L2 = L1 + |e| = 1.5; at φ = −90°, h_A = L1 sin φ − e = −1.5 = −L2, the coupler is
+    # perpendicular to the guide (a singular position); at φ = 0°, |h_A| = 0.5 < L2
+    with mech.show_messages(width=40):
+        solution = mech.CrankSlider(crank=1.0, rod=1.5, offset=0.5).solve(np.radians([-90.0, 0.0]), omega=1.0)
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("SingularPositionWarning: ") and all(len(line) <= 40 for line in lines)
+    assert list(solution.singular) == [True, False]
+
+
+def test_show_messages_lets_other_exceptions_through():
+    with pytest.raises(ZeroDivisionError):
+        with mech.show_messages():
+            1 / 0

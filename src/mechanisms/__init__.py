@@ -33,7 +33,7 @@ if TYPE_CHECKING:   # what the names are, for type checkers and editors; nothing
     from .linkages import Mechanism, Solution, groups, mechanism_classes, registry  # noqa: F401
     from .linkages.composed import Linkage  # noqa: F401
     from .linkages.linkage_file import example_files, load_linkage  # noqa: F401
-    from .present import difference, magnitude, markdown_table, number  # noqa: F401
+    from .present import difference, magnitude, markdown_table, number, show_messages  # noqa: F401
 
 __version__ = "0.2.0"
 
@@ -49,7 +49,7 @@ _NAMES: dict[str, tuple[str, ...]] = {
     "mechanisms.linkages.composed": ("Linkage",),
     "mechanisms.linkages.linkage_file": ("load_linkage", "example_files"),
     # layer 6
-    "mechanisms.present": ("markdown_table", "number", "difference", "magnitude"),
+    "mechanisms.present": ("markdown_table", "number", "difference", "magnitude", "show_messages"),
 }
 """The public names of the package by the module that defines them (imported when first used)."""
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -65,10 +66,13 @@ class AssemblyError(MechanismError, ValueError):
     nowhere : bool
         True if the mechanism assembles at no crank angle at all; the message then says so after
         naming the crank angles asked for.
+    valid_ranges : sequence of (float, float), optional
+        Several crank-angle intervals (rad) in which it assembles (a crank-slider whose rod is too
+        short for its offset has two); named like ``valid_range``, which is then not given.
     """
 
     def __init__(self, reason: str, angles: ArrayLike | None = None, valid_range: tuple[float, float] | None = None,
-                 nowhere: bool = False):
+                 nowhere: bool = False, valid_ranges: Sequence[tuple[float, float]] | None = None):
         self.reason = reason
         self.angles = None if angles is None else np.atleast_1d(np.asarray(angles, dtype=float))
         if valid_range is not None and valid_range[1] - valid_range[0] >= 2.0 * math.pi * (1.0 - 1e-12):
@@ -82,6 +86,9 @@ class AssemblyError(MechanismError, ValueError):
             message += "; it assembles at no crank angle"
         elif valid_range is not None:
             message += f"; it assembles only for crank angles in {describe_range(*valid_range)}"
+        elif valid_ranges:
+            ranges = " and ".join(describe_range(low, high) for low, high in valid_ranges)
+            message += f"; it assembles only for crank angles in {ranges}, mod 360°"
         super().__init__(message)
 
 

@@ -19,7 +19,7 @@ from .groups import RRP, Crank, Group
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_line import slider_on_line
 from ..blocks.crank import crank_pin
-from ..core.errors import AssemblyError, describe_range
+from ..core.errors import AssemblyError
 from ..core.validate import require_branch, require_coordinate, require_length
 from ..core.motion import AngleMotion, Motion, fixed_point
 
@@ -61,10 +61,6 @@ def assembly_ranges(crank: float, rod: float, offset: float) -> list[tuple[float
         return [(-math.pi - b, b)]
     a, b = math.asin(low), math.asin(high)  # both cut: two arcs, around 0° and around 180°
     return [(a, b), (math.pi - b, math.pi - a)]
-
-
-def _describe_ranges(ranges: list[tuple[float, float]]) -> str:
-    return " and ".join(describe_range(lo, hi) for lo, hi in ranges)
 
 
 class CrankSlider(Mechanism):
@@ -152,12 +148,10 @@ class CrankSlider(Mechanism):
         except AssemblyError as error:
             ranges = self.assembly_intervals()
             reason = (f"the rod cannot reach the guide (rod = {self.rod:.10g} m < crank + |offset| = "
-                      f"{self.crank + abs(self.offset):.10g} m, so the crank cannot turn fully")
-            if len(ranges) > 1:
-                reason += f"; it assembles only for crank angles in {_describe_ranges(ranges)}, mod 360°"
-            reason += ")"
-            raise AssemblyError(reason, angles=error.angles,
-                                valid_range=ranges[0] if len(ranges) == 1 else None) from None
+                      f"{self.crank + abs(self.offset):.10g} m, so the crank cannot turn fully)")
+            one = len(ranges) == 1
+            raise AssemblyError(reason, angles=error.angles, valid_range=ranges[0] if one else None,
+                                valid_ranges=None if one else ranges) from None
         pivot = fixed_point(0j, phi, order)
         return Solution(phi, order, angles={"crank": crank, "coupler": block.rod_angle},
                         points={"O": pivot, "A": pin, "B": block.point}, links=self.links,

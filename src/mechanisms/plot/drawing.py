@@ -63,6 +63,7 @@ __all__ = [
     "moving_guides",
     "trajectories",
     "vectors_along",
+    "vector_key",
     "diagram",
     "link_snapshots",
     "annotate_angle",
@@ -422,6 +423,49 @@ def vectors_along(motion: PointMotion, every: int = 1, ax: Axes | None = None, s
         ax.quiver(p.real, p.imag, (v * scale).real, (v * scale).imag, angles="xy", scale_units="xy", scale=1.0,
                   color=colour, width=0.004, zorder=3)
     return ax
+
+
+def _scale_text(scale: float) -> str:
+    """A drawing scale as the book prints it: ``0.04``, ``$6\\cdot10^{-6}$``."""
+    text = f"{scale:.3g}"
+    if "e" not in text:
+        return text
+    mantissa, exponent = text.split("e")
+    power = f"10^{{{int(exponent)}}}"
+    return f"${power}$" if mantissa == "1" else f"${mantissa}\\cdot{power}$"
+
+
+def vector_key(ax: Axes, scale_velocity: float | None = None, scale_acceleration: float | None = None,
+               of: str = "", **legend: Any) -> Any:
+    """The legend of a figure's vectors: the colour of each kind and the scale it is drawn to.
+
+    Parameters
+    ----------
+    ax : Axes
+        Axes whose vectors were drawn by :func:`vectors_along` with these scales.
+    scale_velocity, scale_acceleration : float, optional
+        The scales given to :func:`vectors_along`: m of drawing per m/s, per m/s²; a kind whose
+        scale is not given gets no entry.
+    of : str
+        The points the vectors belong to, named in the entries (``"$P_1$, $P_2$"``), or nothing.
+    **legend
+        Passed to :meth:`Axes.legend` (``loc``, ``bbox_to_anchor`` …); the axes' other labelled
+        artists (the paths of :func:`trajectories`) stay in the legend.
+
+    Returns
+    -------
+    Legend
+        The axes' legend.
+    """
+    whose = f" of {of}" if of else ""
+    for kind, scale, colour, unit in (("velocity", scale_velocity, VELOCITY_COLOUR, "m/s"),
+                                      ("acceleration", scale_acceleration, ACCELERATION_COLOUR, "m/s²")):
+        if scale is None:
+            continue
+        if not isinstance(scale, (int, float, np.number)) or not (np.isfinite(scale) and scale > 0):
+            raise InvalidParameterError(f"scale_{kind}", scale, f"a positive number of m per {unit}")
+        ax.plot([], [], color=colour, label=f"{kind}{whose}: {_scale_text(scale)} m per {unit}")
+    return ax.legend(**legend)
 
 
 def diagram(phi: np.ndarray, curves: dict[str, np.ndarray], ylabel: str, ax: Axes | None = None, step_deg: int = 30,

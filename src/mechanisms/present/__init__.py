@@ -2,7 +2,7 @@
 data for the site's player (:mod:`~mechanisms.present.scene`)."""
 
 from .scene import Arrow, Line, On, Parameter, Readout, Scene, acceleration, explorer, scene, velocity
-from .tables import MarkdownTable, difference, magnitude, markdown_table, number
+from .tables import MarkdownTable, difference, magnitude, markdown_table, number, show_messages
 
-__all__ = ["MarkdownTable", "markdown_table", "number", "difference", "magnitude", "Scene", "scene", "explorer", "Parameter",
+__all__ = ["MarkdownTable", "markdown_table", "number", "difference", "magnitude", "show_messages", "Scene", "scene", "explorer", "Parameter",
            "Readout", "Arrow", "Line", "On", "velocity", "acceleration"]

@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
 import re
-from typing import Sequence
+import textwrap
+import warnings
+from typing import Iterator, Sequence
 
-__all__ = ["MarkdownTable", "markdown_table", "number", "difference", "magnitude"]
+from ..core.errors import MechanismError
+
+__all__ = ["MarkdownTable", "markdown_table", "number", "difference", "magnitude", "show_messages"]
 
 
 class MarkdownTable:
@@ -118,3 +123,34 @@ def magnitude(value: float) -> str:
     if not math.isfinite(value):
         return str(value)
     return f"≈ 1e{round(math.log10(abs(value)))}"
+
+
+@contextlib.contextmanager
+def show_messages(width: int = 76) -> Iterator[None]:
+    """Print the package's warnings and errors raised in a ``with`` block, instead of stopping there.
+
+    Each warning is printed as it is raised (every time, not once per place), and an error of the
+    package (:class:`~mechanisms.MechanismError`) ends the block and is printed; the cell goes on
+    after the block. Other exceptions are not caught. A notebook shows what the package says with
+    ``with mech.show_messages(): sol = m.solve(...)``.
+
+    Parameters
+    ----------
+    width : int
+        The printed lines' width in characters: the message is wrapped, prefixed with its class
+        name (``AssemblyError: …``).
+    """
+    def show(kind: type, message: object) -> None:
+        print(textwrap.fill(f"{kind.__name__}: {message}", width))
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            yield
+        except MechanismError as error:
+            for item in caught:
+                show(item.category, item.message)
+            caught.clear()
+            show(type(error), error)
+        for item in caught:
+            show(item.category, item.message)
