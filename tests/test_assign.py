@@ -227,3 +227,18 @@ def test_sheets_are_deterministic():
     a = make_variant("slotted-lever", seed=9, index=0)
     b = make_variant("slotted-lever", seed=9, index=0)
     assert sheet_html("slotted-lever", a) == sheet_html("slotted-lever", b)
+
+
+def test_sheet_symbols_are_set_as_the_book_sets_them():
+    # issue 19: the sheets printed L1, ψ_t, (x_C, y_C) as plain text; expected strings written by hand
+    from mechanisms.course.assign import symbol_html, symbol_markdown
+    assert symbol_html("ψ_tt") == "<i>ψ</i><sub><i>tt</i></sub>"
+    assert symbol_html("(x_C, y_C)") == "(<i>x</i><sub><i>C</i></sub>, <i>y</i><sub><i>C</i></sub>)"
+    assert symbol_html("φ_t = ω_1") == "<i>φ</i><sub><i>t</i></sub> = <i>ω</i><sub>1</sub>"
+    assert symbol_html("a^k") == "<i>a</i><sup><i>k</i></sup>"
+    assert symbol_markdown("L_1") == "$L_{1}$" and symbol_markdown("a^k") == "$a^{k}$"
+    assert symbol_markdown("") == ""
+    # every symbol of every task is in the book's form: no digit glued to a letter (L1), no word index
+    for task in TASKS.values():
+        for symbol in [q.symbol for q in task.quantities]:
+            assert not re.search(r"[A-Za-zα-ω]\d", symbol) and "tek" not in symbol, symbol

@@ -326,8 +326,8 @@ def _check_crank_slider(mechanism: CrankSlider) -> list[str]:
 
 
 def _data_crank_slider(m: CrankSlider) -> list[tuple[str, str, str, str]]:
-    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
-            ("L2", "coupler (connecting-rod) length |AB|", f"{m.rod:.3f}", "m"),
+    return [("L_1", "crank length |OA|", f"{m.crank:.3f}", "m"),
+            ("L_2", "coupler (connecting-rod) length |AB|", f"{m.rod:.3f}", "m"),
             ("e", "offset: the guide is the line y = e", f"{m.offset:.3f}", "m"),
             ("", "assembly", "the slider B to the right of the crank pin A (x_B > x_A)", "")]
 

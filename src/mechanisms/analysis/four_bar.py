@@ -446,9 +446,9 @@ def _check_four_bar(mechanism: FourBar) -> list[str]:
 
 def _data_four_bar(m: FourBar) -> list[tuple[str, str, str, str]]:
     side = "left" if m.branch == 1 else "right"
-    return [("L1", "crank length |OA|", f"{m.crank:.3f}", "m"),
-            ("L2", "coupler length |AB|", f"{m.coupler:.3f}", "m"),
-            ("L3", "rocker length |CB|", f"{m.rocker:.3f}", "m"),
+    return [("L_1", "crank length |OA|", f"{m.crank:.3f}", "m"),
+            ("L_2", "coupler length |AB|", f"{m.coupler:.3f}", "m"),
+            ("L_3", "rocker length |CB|", f"{m.rocker:.3f}", "m"),
             ("(x_C, y_C)", "rocker pivot C", f"({m.frame[0]:.3f}, {m.frame[1]:.3f})", "m"),
             ("", "assembly (branch)", f"{m.branch:+d}: B to the {side} of the line from A to C", "")]
 

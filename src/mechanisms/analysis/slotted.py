@@ -190,7 +190,7 @@ def _check_slotted_lever(mechanism: SlottedLever) -> list[str]:
 
 
 def _data_slotted_lever(m: SlottedLever) -> list[tuple[str, str, str, str]]:
-    return [("L1", "crank length |OA| (the block is on the crank pin A)", f"{m.crank:.3f}", "m"),
+    return [("L_1", "crank length |OA| (the block is on the crank pin A)", f"{m.crank:.3f}", "m"),
             ("(x_C, y_C)", "the lever's fixed pivot C", f"({m.pivot[0]:.3f}, {m.pivot[1]:.3f})", "m"),
             ("K", "time ratio of the lever (for reference)",
              f"{time_ratio(m.crank, m.pivot_distance):.3f}", "")]
@@ -202,10 +202,10 @@ register_assignment(Task(
     (Quantity("lever.angle_deg", "ξ", "lever angle, of the vector C→A from +x, counter-clockwise", "°"),
      Quantity("lever.omega", "ξ_t", "angular velocity of the lever (positive counter-clockwise)", "1/s"),
      Quantity("lever.alpha", "ξ_tt", "angular acceleration of the lever", "1/s²"),
-     Quantity("A.s", "L_tek", "distance from the pivot C to the block A", "m"),
-     Quantity("A.v", "v_rel", "sliding velocity of the block along the lever (positive away from C)", "m/s"),
-     Quantity("A.a", "a_rel", "relative acceleration of the block along the lever (positive away from C)",
+     Quantity("A.s", "L", "distance from the pivot C to the block A", "m"),
+     Quantity("A.v", "L_t", "sliding velocity of the block along the lever (positive away from C)", "m/s"),
+     Quantity("A.a", "L_tt", "relative acceleration of the block along the lever (positive away from C)",
               "m/s²"),
-     Quantity("A.coriolis", "a_cor", "Coriolis acceleration 2 ξ_t v_rel (positive towards the lever's left)",
-              "m/s²")),
+     Quantity("A.coriolis", "a^k", "Coriolis acceleration, twice the lever's angular velocity times the sliding "
+              "velocity (positive towards the lever's left)", "m/s²")),
     f"the lever oscillates, its pivot at least {SLOTTED_MIN_PIVOT_RATIO:g} crank radii from the crank's centre"))

@@ -51,7 +51,7 @@ class LeverBlock:
         The lever's angle ξ (rad), the direction from the pivot C to the block, with ω₃ = ξ_t
         (rad/s) and ε₃ = ξ_tt (rad/s²).
     distance : Motion
-        The distance L_tek from the pivot to the block along the lever (m), with the sliding
+        The distance L from the pivot to the block along the lever (m, the lecture's L_tek), with the sliding
         velocity ``L_t`` (m/s) and the relative acceleration ``L_tt`` (m/s²). Positive, except in
         :func:`lever_through_pivot`, where it is signed.
     coriolis : ndarray of complex or None
@@ -69,7 +69,7 @@ class LeverBlock:
 
     @property
     def coriolis_magnitude(self) -> np.ndarray | None:
-        """The signed Coriolis acceleration ``2 ω₃ v_rel`` (m/s²), along the lever's left normal."""
+        """The signed Coriolis acceleration ``a^k = 2 ω₃ L_t`` (m/s²), along the lever's left normal."""
         return None if self.coriolis is None else 2.0 * self.lever_angle.omega * self.distance.velocity
 
 

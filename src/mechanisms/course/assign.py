@@ -26,6 +26,7 @@ import io
 import json
 import math
 import pathlib
+import re
 import warnings
 from dataclasses import dataclass
 from typing import Callable, Sequence
@@ -53,6 +54,8 @@ __all__ = [
     "KEY_COLUMNS",
     "sheet_markdown",
     "sheet_html",
+    "symbol_markdown",
+    "symbol_html",
     "write_assignment",
 ]
 
@@ -233,7 +236,7 @@ def _sheet_parts(task: Task, variant: Variant, person: Person | None = None) -> 
         "title": f"{task.title}: assignment {variant.student}",
         "name": _name_line(person),
         "data": task.data(variant.mechanism) + [
-            ("φ_t = ω1", "crank angular velocity, constant, counter-clockwise", f"{variant.omega:g}", "1/s")],
+            ("φ_t = ω_1", "crank angular velocity, constant, counter-clockwise", f"{variant.omega:g}", "1/s")],
         "positions": ", ".join(f"{p:g}°" for p in variant.positions_deg),
         "header": list(KEY_COLUMNS) + [q.column for q in task.quantities],
     }
@@ -251,6 +254,36 @@ def _md(text: str) -> str:
     return text.replace("|", "\\|")
 
 
+_SYMBOL = re.compile(r"([A-Za-zα-ωΑ-Ω])(?:([_^])([A-Za-z0-9]+))?")
+"""A letter of a symbol with its optional index: ``ψ_tt``, ``x_C``, ``L_1``, ``a^k`` (the tasks' notation)."""
+
+
+def symbol_markdown(symbol: str) -> str:
+    """A task's symbol as Markdown math, as the book sets it: ``ψ_tt`` → ``$ψ_{tt}$`` (empty stays empty)."""
+    if not symbol:
+        return ""
+    body = _SYMBOL.sub(lambda m: m[1] + (f"{m[2]}{{{m[3]}}}" if m[2] else ""), symbol)
+    return f"${_md(body)}$"
+
+
+def symbol_html(symbol: str) -> str:
+    """A task's symbol as HTML, as the book sets it: letters in italics, an index after ``_`` as a subscript
+    and after ``^`` as a superscript (``x_C`` → ``<i>x</i><sub><i>C</i></sub>``), digits upright."""
+    def index(text: str) -> str:
+        return re.sub(r"([^\W\d_]+)", r"<i>\1</i>", text)
+
+    out, end = [], 0
+    for match in _SYMBOL.finditer(symbol):
+        out.append(html.escape(symbol[end:match.start()]))
+        out.append(f"<i>{match[1]}</i>")
+        if match[2]:
+            tag = "sub" if match[2] == "_" else "sup"
+            out.append(f"<{tag}>{index(match[3])}</{tag}>")
+        end = match.end()
+    out.append(html.escape(symbol[end:]))
+    return "".join(out)
+
+
 def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None, person: Person | None = None) -> str:
     """The sheet as Markdown; ``image`` is the drawing's file name (omitted if None); ``person`` the student of
     the class list (None: a line to write the name on)."""
@@ -260,12 +293,15 @@ def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None,
     if image:
         lines += [f"![The mechanism of {variant.student}]({image})", ""]
     lines += ["## Data", "", "| symbol | meaning | value | unit |", "|---|---|---|---|"]
-    lines += ["| " + " | ".join(_md(c) for c in row) + " |" for row in parts["data"]]
-    lines += ["", "## Task", "", f"Find, at the crank angles φ = {parts['positions']}:", "",
+    lines += [f"| {symbol_markdown(symbol)} | " + " | ".join(_md(c) for c in rest) + " |"
+              for symbol, *rest in parts["data"]]
+    lines += ["", "## Task", "", f"Find, at the crank angles $φ$ = {parts['positions']}:", "",
               "| column | symbol | quantity | unit |", "|---|---|---|---|"]
-    lines += [f"| `{q.column}` | {_md(q.symbol)} | {_md(q.meaning)} | {_md(q.unit)} |" for q in task.quantities]
+    lines += [f"| `{q.column}` | {symbol_markdown(q.symbol)} | {_md(q.meaning)} | {_md(q.unit)} |"
+              for q in task.quantities]
     lines += ["", INSTRUCTIONS.format(student=variant.student), "", "## Answers", "",
-              "| position | φ, ° | " + " | ".join(f"{q.symbol}, {q.unit}" for q in task.quantities) + " |",
+              "| position | $φ$, ° | " + " | ".join(f"{symbol_markdown(q.symbol)}, {q.unit}" for q in task.quantities)
+              + " |",
               "|---|---|" + "---|" * len(task.quantities)]
     lines += [f"| {i + 1} | {p:g} | " + " | ".join(" " for _ in task.quantities) + " |"
               for i, p in enumerate(variant.positions_deg)]
@@ -314,15 +350,15 @@ def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None, per
            f'<img alt="The mechanism of {e(variant.student)}" src="data:image/png;base64,'
            f'{base64.b64encode(png).decode("ascii")}">',
            "<h2>Data</h2>", "<table><tr><th>symbol</th><th>meaning</th><th>value</th><th>unit</th></tr>"]
-    out += [f'<tr><td>{e(s)}</td><td>{e(m)}</td><td{_numeric(v)}>{e(v)}</td><td>{e(u)}</td></tr>'
+    out += [f'<tr><td>{symbol_html(s)}</td><td>{e(m)}</td><td{_numeric(v)}>{e(v)}</td><td>{e(u)}</td></tr>'
             for s, m, v, u in parts["data"]]
-    out += ["</table>", "<h2>Task</h2>", f"<p>Find, at the crank angles φ = {e(parts['positions'])}:</p>",
+    out += ["</table>", "<h2>Task</h2>", f"<p>Find, at the crank angles <i>φ</i> = {e(parts['positions'])}:</p>",
             "<table><tr><th>column</th><th>symbol</th><th>quantity</th><th>unit</th></tr>"]
-    out += [f"<tr><td><code>{e(q.column)}</code></td><td>{e(q.symbol)}</td><td>{e(q.meaning)}</td>"
+    out += [f"<tr><td><code>{e(q.column)}</code></td><td>{symbol_html(q.symbol)}</td><td>{e(q.meaning)}</td>"
             f"<td>{e(q.unit)}</td></tr>" for q in task.quantities]
     out += ["</table>", f"<p>{e(INSTRUCTIONS.format(student=variant.student))}</p>", "<h2>Answers</h2>",
-            '<table class="answers"><tr><th>position</th><th>φ, °</th>'
-            + "".join(f"<th>{e(q.symbol)}, {e(q.unit)}</th>" for q in task.quantities) + "</tr>"]
+            '<table class="answers"><tr><th>position</th><th><i>φ</i>, °</th>'
+            + "".join(f"<th>{symbol_html(q.symbol)}, {e(q.unit)}</th>" for q in task.quantities) + "</tr>"]
     out += [f'<tr><td class="num">{i + 1}</td><td class="num">{p:g}</td>' + "<td></td>" * len(task.quantities)
             + "</tr>" for i, p in enumerate(variant.positions_deg)]
     form = [",".join(parts["header"])] + [f"{variant.student},{i + 1},{p:g}" + "," * len(task.quantities)

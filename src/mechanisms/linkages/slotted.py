@@ -70,13 +70,13 @@ class SlottedLever(Mechanism):
     -----
     Joints: O crank pivot, A crank pin and block, C lever pivot, B lever end (and E, the end of the
     lever's other arm, when the pivot lies on the crank circle). Links: ``crank`` (O→A),
-    ``lever`` (C→A, angle ξ). Slider ``A``: the distance L_tek from C to the block (m), with the
-    sliding velocity and relative acceleration; ``extras["A"]["coriolis"]`` is the Coriolis
-    acceleration ``2 ω₃ v_rel`` (m/s², positive towards the lever's left).
+    ``lever`` (C→A, angle ξ). Slider ``A``: the distance L from C to the block (m, the lecture's
+    L_tek), with the sliding velocity L_t and relative acceleration L_tt; ``sol.coriolis("A")`` is
+    the Coriolis acceleration a^k = 2 ω₃ L_t (m/s², positive towards the lever's left).
 
-    The lever oscillates when ``|OC| > r``, rotates when ``|OC| < r``; when ``|OC| = r`` the block
+    The lever oscillates when ``|OC| > L1``, rotates when ``|OC| < L1``; when ``|OC| = L1`` the block
     passes through the pivot once a revolution and the lever turns at half the crank's speed
-    (then L_tek is signed: negative on the lever's other arm).
+    (then L is signed: negative on the lever's other arm).
     """
 
     cli_name = "slotted-lever"
@@ -153,7 +153,7 @@ class SlottedLever(Mechanism):
                 self.crank * np.sin(phi) - b - s * np.sin(xi))
 
     def coriolis_vector(self, solution: Solution) -> np.ndarray:
-        """The Coriolis acceleration of the block as a vector ``2 ω₃ v_rel · i exp(iξ)`` (m/s², complex)."""
+        """The Coriolis acceleration of the block as a vector ``2 ω₃ L_t · i exp(iξ)`` (m/s², complex)."""
         xi = solution.angle("lever")
         return 2.0 * xi.omega * solution.slider("A").velocity * 1j * np.exp(1j * xi.value)
 
@@ -257,7 +257,7 @@ class Shaper(Mechanism):
     Notes
     -----
     Joints O, A (crank pin and block), C, B (lever end), D (ram). Links ``crank`` (O→A), ``lever``
-    (C→B, angle ξ), ``rod`` (B→D). Sliders ``A`` (L_tek, with ``coriolis``) and ``D`` (the ram's
+    (C→B, angle ξ), ``rod`` (B→D). Sliders ``A`` (L, with ``coriolis``) and ``D`` (the ram's
     abscissa x_D, m). The ram's extreme positions are those of the lever, so the ram's stroke and
     time ratio follow from the lever's (:mod:`mechanisms.analysis.slotted`).
     """
