@@ -235,3 +235,100 @@ def test_every_letter_is_nearest_to_its_own_vertex_and_every_name_beside_its_vec
                 dy = np.maximum(np.maximum(box.y0 - z.imag, z.imag - box.y1), 0.0)
                 gaps[other] = np.min(np.hypot(dx, dy))
             assert gaps[name] < 7.5, name           # beside its own vector, mm of the drawing
+
+
+def _gaps_in_points(ax):
+    """For each boxed text of a drawn plan: its gap (pt) to the nearest other box, vertex dot and arrowhead.
+
+    Measured on the drawn artists: the white boxes, the dots (3.5 pt across) and the arrowheads'
+    outlines as matplotlib drew them.
+    """
+    ax.figure.canvas.draw()
+    to_points = 72.0 / ax.figure.dpi
+    texts = [t for t in ax.texts if t.get_bbox_patch() is not None]
+    boxes = [t.get_bbox_patch().get_window_extent() for t in texts]
+    dots = [ax.transData.transform((ln.get_xdata()[0], ln.get_ydata()[0])) for ln in ax.lines
+            if ln.get_marker() == "o"]
+    heads = []
+    s = np.linspace(0.0, 1.0, 21)[:, None]
+    for arrow in _arrows(ax):
+        tip, corner, _, other = arrow.arrow_patch.get_path().vertices[2:6]   # the filled head: a triangle
+        heads += [a + s * (b - a) for a, b in ((tip, corner), (corner, other), (other, tip))]
+
+    def to_box(box, xy):
+        xy = np.atleast_2d(xy)
+        dx = np.maximum(np.maximum(box.x0 - xy[:, 0], xy[:, 0] - box.x1), 0.0)
+        dy = np.maximum(np.maximum(box.y0 - xy[:, 1], xy[:, 1] - box.y1), 0.0)
+        return float(np.min(np.hypot(dx, dy))) * to_points
+
+    gaps = {}
+    for k, (text, box) in enumerate(zip(texts, boxes)):
+        between = [np.hypot(max(box.x0 - o.x1, o.x0 - box.x1, 0.0), max(box.y0 - o.y1, o.y0 - box.y1, 0.0))
+                   * to_points for j, o in enumerate(boxes) if j != k]
+        gaps[text.get_text()] = (min(between), min(to_box(box, d) for d in dots) - 1.75,
+                                 min(to_box(box, h) for h in heads))
+    return gaps
+
+
+def _shaper_cluster():
+    """A hand-built acceleration plan: the crowd of chapter 10's shaper at 330°, in round mm.
+
+    The pole π; a′ (a_A); k at the end of the Coriolis component a′k; a3′ 15 mm below k (the sliding
+    component k a3′, short); b′ far left on the line π a3′ produced (a_B). μ_a = 1 (m/s²)/mm.
+    """
+    vertices = {"π": 0j, "a′": -43 + 25j, "k": -50.5 + 27j, "a3′": -54 + 12j, "b′": -90 + 20j}
+    vector = plans.PlanVector
+    vectors = (vector("a_A", "π", "a′", "absolute", "crank", vertices["a′"]),
+               vector("a^k_A3A2", "a′", "k", "coriolis", "lever", vertices["k"] - vertices["a′"]),
+               vector("a^r_A3A2", "k", "a3′", "sliding", "lever", vertices["a3′"] - vertices["k"]),
+               vector("a_A3", "π", "a3′", "absolute", "lever", vertices["a3′"]),
+               vector("a_B", "π", "b′", "absolute", "lever", vertices["b′"]))
+    return plans.AccelerationPlan("acceleration", 0.0, "π", vertices, {}, vectors, (), {}, 1.0)
+
+
+@pytest.mark.parametrize("case", ["hand-built crowd", "shaper", "slotted lever", "slotted lever at 0°",
+                                  "crank-slider", "four-bar"])
+def test_no_letter_touches_another_letter_a_vertex_or_an_arrowhead(case):
+    # the rule: every letter and name keeps a gap of a quarter of its font size (2.5 pt for the 10 pt
+    # names, 2.75 pt for the 11 pt letters; 2 pt asked here, for the measuring) from every other
+    # letter, every vertex dot and every arrowhead, its own vertex's included
+    if case == "hand-built crowd":
+        ax = plot_plans.draw_plan(_shaper_cluster())
+        axes = [ax]
+    else:
+        machines = {"shaper": (mech.Shaper(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22),
+                               330.0, None, (9.5, 10.0)),
+                    "slotted lever": (mech.SlottedLever(crank=0.1, pivot=(0.0, 0.25)), 64.0, None, (9.5, 9.0)),
+                    "slotted lever at 0°": (mech.SlottedLever(crank=0.1, pivot=(0.0, 0.3)), 0.0, None, (8.0, 7.4)),
+                    "crank-slider": (EXAMPLE, 30.0, {"S2": ("coupler", 0.09, 0.0)}, (9.5, 8.6)),
+                    "four-bar": (mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05)), 60.0, {"M": ("coupler", 0.2, 0.12)},
+                                 (9.5, 9.2))}
+        m, phi, points, size = machines[case]
+        sol = m.solve(np.radians([phi]), omega=10.0)
+        v = plans.velocity_plan(m, sol, points=points)
+        a = plans.acceleration_plan(m, sol, points=points, velocity=v)
+        _, axes = plot_plans.draw_plans(m, sol, v, a, figsize=size)
+        axes = axes[1:]
+    for ax in axes:
+        for text, (label, vertex, head) in _gaps_in_points(ax).items():
+            assert min(label, vertex, head) >= 2.0, (text, label, vertex, head)
+
+
+def test_a_short_vector_in_a_crowd_keeps_its_name_beside_it():
+    # the hand-built crowd: the name of the short sliding component k a3′ has few places; it chooses
+    # before the letters, so it stays beside its own vector, nearer to it than to the long π b′ below
+    ax = plot_plans.draw_plan(_shaper_cluster())
+    ax.figure.canvas.draw()
+    names = {t.get_text(): t for t in ax.texts}
+    assert "$a^{r}_{A_{3}A_{2}}$" in names and "$k$" in names
+    box = names["$a^{r}_{A_{3}A_{2}}$"].get_window_extent().transformed(ax.transData.inverted())
+    t = np.linspace(0.0, 1.0, 201)
+
+    def gap(p, q):
+        z = p + t * (q - p)
+        dx = np.maximum(np.maximum(box.x0 - z.real, z.real - box.x1), 0.0)
+        dy = np.maximum(np.maximum(box.y0 - z.imag, z.imag - box.y1), 0.0)
+        return np.min(np.hypot(dx, dy))
+
+    own, other = gap(-50.5 + 27j, -54 + 12j), gap(0j, -90 + 20j)
+    assert own < other and own < 4.0

@@ -44,7 +44,8 @@ _STYLE = {  # kind → (line style, line width)
 
 
 # Labels sit on a light box, so a line or an arrowhead under a label does not make it illegible.
-_LABEL_BOX = {"boxstyle": "round,pad=0.12", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
+_LABEL_BOX_PAD = 0.12
+_LABEL_BOX = {"boxstyle": f"round,pad={_LABEL_BOX_PAD}", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
 
 _LETTER = re.compile(r"^(\D+?)(\d*)(′*)$")
 
@@ -144,30 +145,98 @@ def _box_distance(centre: complex, half: tuple[float, float], points: Any) -> fl
     return float(np.min(np.hypot(dx, dy)))
 
 
-class _Placer:
-    """Places the letters of a plan where they cover no other letter, no vertex and as little line as can be.
+def _boxes_distance(first: tuple[float, float, float, float], second: tuple[float, float, float, float]) -> float:
+    """The gap between two boxes (left, right, bottom, top): 0 if they touch or overlap."""
+    dx = max(first[0] - second[1], second[0] - first[1], 0.0)
+    dy = max(first[2] - second[3], second[2] - first[3], 0.0)
+    return float(np.hypot(dx, dy))
 
-    Sizes are in mm of the drawing: each text is measured as drawn (its box included), and every candidate
-    position is scored by its overlap with the letters already placed, the vertices, the vectors' lines
-    and the edge of the axes; the candidate with the lowest score wins.
+
+def _reach(hw: float, hh: float, u: complex, clear: float) -> float:
+    """How far in the direction ``u`` to put a box's centre so that the box is ``clear`` from the point."""
+    low, high = 0.0, hw + hh + clear
+    for _ in range(40):                    # the gap grows with the distance: bisect
+        middle = 0.5 * (low + high)
+        gap = np.hypot(max(middle * abs(u.real) - hw, 0.0), max(middle * abs(u.imag) - hh, 0.0))
+        low, high = (middle, high) if gap < clear else (low, middle)
+    return high
+
+
+# An arrowhead of _arrow ("-|>", mutation scale 12): 0.4 × 12 pt long, 0.2 × 12 pt either side of the line.
+_HEAD_LENGTH, _HEAD_HALF_WIDTH = 4.8, 2.4
+# The gap (in points, as a fraction of the font size) every letter keeps from every other letter, every
+# vertex and every arrowhead, and the gap beyond which a position counts as free as any.
+_GAP, _FREE = 0.25, 0.8
+
+
+class _Placer:
+    """Places the letters of a plan clear of each other, of the vertices and of the arrowheads.
+
+    Sizes are in mm of the drawing: each text is measured as drawn, its white box included. Every
+    candidate position is scored: a letter nearer than a quarter of its font size (its gap) to
+    another letter, a vertex or an arrowhead is penalised as much as one covering them; among the
+    others, the farther a letter is from the nearest of them (up to 1.2 times its font size), the
+    better, and the less line it covers; the edge of the axes bounds it. The candidate with the
+    lowest score wins.
     """
 
-    def __init__(self, ax: Axes, dots: list[complex], segments: list[tuple[complex, complex]]):
+    def __init__(self, ax: Axes, dots: list[complex], segments: list[tuple[complex, complex]],
+                 widths: list[float] | None = None):
         self.ax, self.dots, self.segments = ax, dots, segments
         ax.apply_aspect()
         width = ax.get_window_extent().width
         (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
         self.mm_per_pixel = (x1 - x0) / width if width > 0 else 1.0
+        self.mm_per_point = self.mm_per_pixel * ax.figure.dpi / 72
         self.limits = (x0, x1, y0, y1)
         self.boxes: list[tuple[float, float, float, float]] = []
-        self.dot = 1.2 * self.mm_per_pixel * ax.figure.dpi / 72 * 3.5 / 2    # a vertex dot's radius and a bit
+        self.radius = 3.5 / 2 * self.mm_per_point              # a vertex dot's radius (ms = 3.5 pt)
+        self.dot = 1.2 * self.radius                            # vertices closer than this are one
+        self.heads = self._arrowheads(widths or [2.0] * len(segments))
+
+    def _arrowheads(self, widths: list[float]) -> np.ndarray:
+        """Points on the outline of every vector's arrowhead (a triangle at its head, line width added)."""
+        samples = [np.zeros(0, dtype=complex)]
+        s = np.linspace(0.0, 1.0, 9)
+        for (tail, head), width in zip(self.segments, widths):
+            along = (head - tail) / abs(head - tail)
+            pad = 0.5 * width * self.mm_per_point
+            back = head - (_HEAD_LENGTH * self.mm_per_point + pad) * along
+            side = (_HEAD_HALF_WIDTH * self.mm_per_point + pad) * 1j * along
+            corners = [head + pad * along, back + side, back - side]
+            for k in range(3):
+                samples.append(corners[k] + s * (corners[(k + 1) % 3] - corners[k]))
+        return np.concatenate(samples)
 
     def half_size(self, text: Any) -> tuple[float, float]:
+        """Half the width and height (mm) of a text's white box."""
         box = text.get_window_extent()
-        pad = 0.25 * text.get_fontsize() * self.ax.figure.dpi / 72      # the white box's padding, and a gap
+        pad = _LABEL_BOX_PAD * text.get_fontsize() * self.ax.figure.dpi / 72
         return ((box.width / 2 + pad) * self.mm_per_pixel, (box.height / 2 + pad) * self.mm_per_pixel)
 
-    def cost(self, centre: complex, half: tuple[float, float], skip: int | None = None,
+    def clearance(self, centre: complex, half: tuple[float, float],
+                  owner: complex | None = None) -> tuple[float, float]:
+        """The gaps (mm) from a text's box to the nearest thing it must not touch.
+
+        Returns the gap to the nearest letter, vertex or arrowhead, and the same without the letter's own
+        vertex (``owner``), which a letter stays beside.
+        """
+        hw, hh = half
+        box = (centre.real - hw, centre.real + hw, centre.imag - hh, centre.imag + hh)
+        gaps = [_boxes_distance(box, other) for other in self.boxes]
+        if len(self.heads):
+            gaps.append(_box_distance(centre, half, self.heads))
+        own = np.inf
+        for dot in self.dots:
+            gap = _box_distance(centre, half, dot) - self.radius
+            if owner is not None and abs(dot - owner) <= self.dot:
+                own = min(own, gap)
+            else:
+                gaps.append(gap)
+        others = min(gaps, default=np.inf)
+        return min(others, own), others
+
+    def cost(self, centre: complex, half: tuple[float, float], size: float, skip: int | None = None,
              owner: complex | None = None) -> float:
         hw, hh = half
         left, right, bottom, top = centre.real - hw, centre.real + hw, centre.imag - hh, centre.imag + hh
@@ -177,10 +246,13 @@ class _Placer:
             overlap = max(0.0, min(right, r2) - max(left, l2)) * max(0.0, min(top, t2) - max(bottom, b2))
             total += 200.0 * overlap / area
         for dot in self.dots:                      # vertices stay visible
-            dx = max(left - dot.real, 0.0, dot.real - right)
-            dy = max(bottom - dot.imag, 0.0, dot.imag - top)
-            if np.hypot(dx, dy) < self.dot:
+            if _box_distance(centre, half, dot) < self.radius:
                 total += 60.0
+        nearest, others = self.clearance(centre, half, owner)
+        gap, free = _GAP * size * self.mm_per_point, _FREE * size * self.mm_per_point
+        if nearest < 0.999 * gap:                  # touching a letter, a vertex or an arrowhead
+            total += 40.0 + 20.0 * (gap - max(nearest, 0.0)) / gap
+        total += 1.0 * max(free - others, 0.0) / free      # the farther from the others the better
         for k, (a, b) in enumerate(self.segments):  # lines under a letter: the length covered
             if k == skip:
                 continue
@@ -214,17 +286,24 @@ class _Placer:
             return 8.0 if others and min(others) < own - 2.0 else 0.0
         return 0.0
 
+    def choices(self, text: Any, candidates: list[tuple[complex, float]], skip: int | None = None,
+                owner: complex | None = None) -> int:
+        """How many of the candidates are nearly as good as the best, before any letter is placed."""
+        half, size = self.half_size(text), text.get_fontsize()
+        scores = np.array([self.cost(c, half, size, skip, owner) + p for c, p in candidates])
+        return int(np.sum(scores <= scores.min() + 1.5))
+
     def place(self, text: Any, candidates: list[tuple[complex, float]], skip: int | None = None,
               optional: bool = False, owner: complex | None = None) -> None:
         """Move ``text`` to the best of the candidate centres (each with its own penalty).
 
-        An ``optional`` text (a vector's name) that would cover a letter or a vertex wherever it went
-        is removed instead.
+        An ``optional`` text (a vector's name) that would touch a letter, a vertex or an arrowhead
+        wherever it went is removed instead.
         """
-        half = self.half_size(text)
-        best, score = min(((c, self.cost(c, half, skip, owner) + p) for c, p in candidates),
+        half, size = self.half_size(text), text.get_fontsize()
+        best, score = min(((c, self.cost(c, half, size, skip, owner) + p) for c, p in candidates),
                           key=lambda cs: cs[1])
-        if optional and score >= 50.0:
+        if optional and score >= 40.0:
             text.remove()
             return
         text.set_position((best.real, best.imag))
@@ -233,10 +312,11 @@ class _Placer:
     def around(self, text: Any, point: complex, away: complex) -> list[tuple[complex, float]]:
         """Candidate centres for a vertex's letter: all round the vertex, clear of its dot; ``away`` preferred."""
         hw, hh = self.half_size(text)
+        clear = self.radius + _GAP * text.get_fontsize() * self.mm_per_point
         out = []
         for angle in np.radians(np.arange(0.0, 360.0, 15.0)):
             u = complex(np.cos(angle), np.sin(angle))
-            reach = min(hw / max(abs(u.real), 1e-9), hh / max(abs(u.imag), 1e-9)) + self.dot
+            reach = _reach(hw, hh, u, clear)
             for extra in (0.0, 0.6, 1.2):
                 preference = 0.6 * (1.0 - (u * away.conjugate()).real) + 1.5 * extra
                 out.append((point + (reach + extra * hh) * u, preference))
@@ -249,9 +329,9 @@ class _Placer:
         normal = 1j * along
         clear = hw * abs(normal.real) + hh * abs(normal.imag) + 0.3 * hh
         out = []
-        for fraction in (0.5, 0.4, 0.6, 0.3, 0.7):
+        for fraction in (0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8):
             for side in (1.0, -1.0):
-                for extra in (0.0, 0.8, 1.6):
+                for extra in (0.0, 0.4, 0.8, 1.2, 1.6):
                     preference = 2.0 * abs(fraction - 0.5) + (0.0 if side > 0 else 0.3) + 1.5 * extra
                     out.append((tail + fraction * (head - tail) + side * (clear + extra * hh) * normal, preference))
         return out
@@ -286,9 +366,13 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
     Notes
     -----
     The letters are the book's (chapter 10) in mathtext: $p$, $a$, $s_2$ on a velocity plan, $\pi$,
-    $a'$, $n_2$, $k$ on an acceleration plan. Each letter is placed where it covers no other letter
-    and no vertex and as little of the vectors as possible, preferably away from the plan's middle
-    (the pole's) or on the left of its vector (a vector's name).
+    $a'$, $n_2$, $k$ on an acceleration plan. Each letter (and each vector's name) is tried at
+    positions round its vertex (beside its vector) and put where it keeps a gap of a quarter of its
+    font size from every other letter, every vertex and every arrowhead, farther if it can (up to
+    0.8 of its font size), covers as little of the vectors as possible and is taken for no other
+    vertex or vector, preferably away from the plan's middle (the pole's) or on the left of its
+    vector. The text with the fewest good positions (a name beside a short vector in a crowd)
+    chooses first. A name that cannot keep its gap anywhere is left out.
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(5.0, 5.0))
@@ -301,6 +385,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
                 ax.add_patch(Polygon([(c.real, c.imag) for c in corners], closed=True, zorder=1, alpha=0.15,
                                      facecolor=ROLE_COLOURS[LINK_ROLES.get(link, "coupler")], edgecolor="none"))
     segments: list[tuple[complex, complex]] = []
+    widths: list[float] = []
     named = []
     for vector in plan.vectors:
         tail, head = drawn[vector.tail], drawn[vector.head]
@@ -311,6 +396,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         # a component is drawn over the (wider) absolute vector it may lie along, so both show
         _arrow(ax, tail, head, shade, style, width, 3 if vector.kind == "absolute" else 4)
         segments.append((tail, head))
+        widths.append(width)
         if names and vector.kind != "absolute" and abs(head - tail) >= 3.0 * label_offset:
             named.append((len(segments) - 1, vector, shade))
     values = np.array(list(drawn.values()))
@@ -333,7 +419,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
     scale = ax.text(0.98, 0.02, f"{symbol} = {plan.scale:g} ({plan.unit})/mm", transform=ax.transAxes,
                     ha="right", va="bottom", fontsize=9,
                     bbox={"facecolor": "white", "edgecolor": "0.7", "boxstyle": "round"})
-    placer = _Placer(ax, [complex(v) for v in values], segments)
+    placer = _Placer(ax, [complex(v) for v in values], segments, widths)
     corner = scale.get_window_extent().transformed(ax.transData.inverted())   # no letter on the scale
     placer.boxes.append((corner.x0 - 1.0, corner.x1 + 1.0, corner.y0 - 1.0, corner.y1 + 1.0))
     centre = complex(np.mean(values))
@@ -343,20 +429,26 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         others = [abs(where[tuple(group)] - z) for g, z in where.items() if g != tuple(group)]
         return min(others, default=np.inf)
 
+    jobs: list[tuple[Any, list[tuple[complex, float]], int | None, complex | None]] = []
+    # each: the text, its candidates, the index of its vector (a name), its vertex (a letter)
     for group in sorted(groups, key=crowding):
         point = where[tuple(group)]
         away = point - centre if plan.pole in group else point
         away = away / abs(away) if abs(away) > 1e-9 else 1j
         text = ax.text(point.real, point.imag, ", ".join(vertex_label(label) for label in group), fontsize=11,
                        ha="center", va="center", zorder=7, bbox=_LABEL_BOX)
-        placer.place(text, placer.around(text, point, away), owner=point)
+        jobs.append((text, placer.around(text, point, away), None, point))
     for index, vector, shade in named:
         tail, head = drawn[vector.tail], drawn[vector.head]
         name = vector_label(vector.latex)
         size = 12 if re.search(r"[A-Z]_\{\d", name) else 10     # a subscript's subscript needs the larger size
         text = ax.text(0.0, 0.0, name, fontsize=size, color=shade, ha="center", va="center", zorder=5,
                        bbox=_LABEL_BOX)
-        placer.place(text, placer.beside(text, tail, head), skip=index, optional=True)
+        jobs.append((text, placer.beside(text, tail, head), index, None))
+    # the text with the fewest good places chooses first (a name beside a short vector in a crowd),
+    # then the letters of crowded vertices, then the rest
+    for text, candidates, skip, owner in sorted(jobs, key=lambda job: placer.choices(*job)):
+        placer.place(text, candidates, skip=skip, optional=skip is not None, owner=owner)
     ax.set_xlabel("mm of the drawing")
     ax.set_ylabel("mm of the drawing")
     what = "velocity plan" if plan.quantity == "velocity" else "acceleration plan"
