@@ -235,3 +235,14 @@ def test_bad_input_of_the_helpers_names_the_parameter():
         analysis.slider_extremes(m, 0.0)
     with pytest.raises(mech.InvalidParameterError, match="samples"):
         analysis.slider_extremes(m, 1.0, samples=2)
+
+
+def test_the_inner_extreme_of_the_limiting_geometry_is_marked_singular():
+    # by hand: L2 = L1 + |e| (1 + 1 = 2, 2 + 0.5 = 2.5) makes the folded position the coupler
+    # perpendicular to the guide; 2.5 ≠ 1 + 1 is an ordinary crank-slider; the rounded float sum
+    # 0.1 + 0.2 = 0.30000000000000004 exceeds the exact sum of the doubles 0.1 and 0.2 (by about
+    # 2.8·10⁻¹⁷), so that rod makes an ordinary crank-slider too
+    assert analysis.dead_centres(mech.CrankSlider(1.0, 2.0, 1.0)).inner_singular
+    assert analysis.dead_centres(mech.CrankSlider(2.0, 2.5, -0.5)).inner_singular
+    assert not analysis.dead_centres(mech.CrankSlider(1.0, 2.5, 1.0)).inner_singular
+    assert not analysis.dead_centres(mech.CrankSlider(0.1, 0.1 + 0.2, 0.2)).inner_singular

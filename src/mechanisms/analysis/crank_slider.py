@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from fractions import Fraction
 from dataclasses import dataclass
 
 import numpy as np
@@ -96,12 +97,17 @@ class DeadCentres:
         farthest from the crank pivot) and folded (inner: nearest).
     s_outer, s_inner : float
         The slider's positions s = x_B there (m).
+    inner_singular : bool
+        True in the limiting geometry L2 = L1 + |e| (exactly, for the given doubles): the inner
+        extreme is then a singular position (the coupler perpendicular to the guide), where the slider
+        reverses without coming to rest, not a dead centre.
     """
 
     phi_outer: float
     phi_inner: float
     s_outer: float
     s_inner: float
+    inner_singular: bool = False
 
     @property
     def stroke(self) -> float:
@@ -122,7 +128,7 @@ def dead_centres(mechanism: CrankSlider) -> DeadCentres:
     In the limiting geometry L2 = L1 + |e| the folded position is also the singular position where the
     coupler stands perpendicular to the guide (chapter 3): the slider is at its extreme there but
     reverses without coming to rest, so ``phi_inner`` is an extreme position, not a dead centre in the
-    book's sense (``solve`` flags it singular).
+    book's sense (``solve`` flags it singular; ``inner_singular`` says so).
     """
     _require_full_revolution(mechanism, "the pair of dead centres")
     l1, l2, e, b = mechanism.crank, mechanism.rod, mechanism.offset, mechanism.branch
@@ -132,7 +138,8 @@ def dead_centres(mechanism: CrankSlider) -> DeadCentres:
     phi_inner = math.atan2(e, s_inner) + math.pi
     if phi_inner > math.pi:
         phi_inner -= 2.0 * math.pi
-    return DeadCentres(phi_outer, phi_inner, s_outer, s_inner)
+    limiting = Fraction(l2) == Fraction(l1) + Fraction(abs(e))   # exact: L2 = L1 + |e|
+    return DeadCentres(phi_outer, phi_inner, s_outer, s_inner, limiting)
 
 
 def stroke(mechanism: CrankSlider) -> float:
