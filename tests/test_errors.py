@@ -115,3 +115,18 @@ def test_rates_of_the_wrong_shape_or_size_are_named():
         crank_angle([0.1], 1.0, -1e200)
     a = crank_angle([[0.1, 0.2]], [[1.0], ], order=1)
     assert a.omega.shape == (1, 2)
+
+
+def test_a_failing_angle_is_never_printed_inside_the_range_the_message_names():
+    # issue 19's re-read: "at 127.169°; it assembles only for [-127.17°, 127.17°]" contradicted itself.
+    # By hand: 127.1695° lies outside [-127.1694°, 127.1694°]; with three decimals the range prints
+    # 127.169 and the angle (seven digits) 127.1695, which is outside it
+    error = errors.AssemblyError("the links cannot reach", np.radians([127.1695]),
+                                 valid_range=(np.radians(-127.1694), np.radians(127.1694)))
+    assert str(error) == ("the links cannot reach at crank angle(s) 127.1695°; it assembles only for crank "
+                          "angles in [-127.169°, 127.169°]")
+    # a clear case keeps the short form
+    plain = errors.AssemblyError("the rod cannot reach", np.radians([250.0]),
+                                 valid_range=(np.radians(-44.43), np.radians(224.43)))
+    assert str(plain) == ("the rod cannot reach at crank angle(s) 250°; it assembles only for crank angles in "
+                          "[-44.43°, 224.43°]")

@@ -79,17 +79,36 @@ class AssemblyError(MechanismError, ValueError):
             valid_range = None
         self.valid_range = valid_range
         self.nowhere = nowhere
+        named = [] if nowhere else [valid_range] if valid_range is not None else list(valid_ranges or [])
+        extra = _extra_digits(self.angles, named)
         message = reason
         if self.angles is not None and self.angles.size:
-            message += f" at crank angle(s) {describe_angles(self.angles)}"
+            message += f" at crank angle(s) {describe_angles(self.angles, digits=6 + extra)}"
         if nowhere:
             message += "; it assembles at no crank angle"
-        elif valid_range is not None:
-            message += f"; it assembles only for crank angles in {describe_range(*valid_range)}"
-        elif valid_ranges:
-            ranges = " and ".join(describe_range(low, high) for low, high in valid_ranges)
-            message += f"; it assembles only for crank angles in {ranges}, mod 360°"
+        elif named:
+            ranges = " and ".join(describe_range(low, high, decimals=2 + extra) for low, high in named)
+            message += f"; it assembles only for crank angles in {ranges}" + (", mod 360°" if len(named) > 1 else "")
         super().__init__(message)
+
+
+def _extra_digits(angles: np.ndarray | None, ranges: Sequence[tuple[float, float]]) -> int:
+    """How many more digits the angles and ranges of a message need so that no failing angle, as printed,
+    lies inside a range as printed (127.169° against [-127.17°, 127.17°] would contradict the error)."""
+    if angles is None or not angles.size or not ranges:
+        return 0
+    shown = np.degrees(angles[:6])
+    for extra in range(11):
+        inside = False
+        for low, high in ranges:
+            lo, hi = (round(math.degrees(x), 2 + extra) for x in (low, high))
+            for value in shown:
+                printed = float(f"{value:.{6 + extra}g}")
+                if lo <= lo + (printed - lo) % 360.0 <= hi:
+                    inside = True
+        if not inside:
+            return extra
+    return 10
 
 
 class StructureError(MechanismError, ValueError):
@@ -173,15 +192,15 @@ def __getattr__(name: str) -> type:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def describe_angles(angles: ArrayLike, limit: int = 6) -> str:
-    """Return crank angles (rad) as a short list in degrees, for messages."""
+def describe_angles(angles: ArrayLike, limit: int = 6, digits: int = 6) -> str:
+    """Return crank angles (rad) as a short list in degrees (``digits`` significant), for messages."""
     deg = np.degrees(np.atleast_1d(np.asarray(angles, dtype=float)))
-    shown = ", ".join(f"{d:.6g}°" for d in deg[:limit])  # exact enough to find the position again
+    shown = ", ".join(f"{d:.{digits}g}°" for d in deg[:limit])  # exact enough to find the position again
     if deg.size > limit:
         shown += f", … ({deg.size} angles in all)"
     return shown
 
 
-def describe_range(low: float, high: float) -> str:
+def describe_range(low: float, high: float, decimals: int = 2) -> str:
     """A crank-angle interval (rad) for messages: ``[-44.43°, 224.43°]``."""
-    return f"[{math.degrees(low):.2f}°, {math.degrees(high):.2f}°]"
+    return f"[{math.degrees(low):.{decimals}f}°, {math.degrees(high):.{decimals}f}°]"
