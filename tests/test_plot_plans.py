@@ -332,3 +332,85 @@ def test_a_short_vector_in_a_crowd_keeps_its_name_beside_it():
 
     own, other = gap(-50.5 + 27j, -54 + 12j), gap(0j, -90 + 20j)
     assert own < other and own < 4.0
+
+
+def _shaper_tangential_crowd():
+    """A hand-built acceleration plan: chapter 10's shaper at 330° with the lever's components, round mm.
+
+    As :func:`_shaper_cluster`, with n3 1 mm from the pole (a short normal component π n3), the
+    tangential component n3 a3′ running almost along π b′, between π a′ above it and π d′ (the
+    ram's a_D, along −x) below it. μ_a = 1 (m/s²)/mm.
+    """
+    vertices = {"π": 0j, "a′": -43 + 25j, "k": -50.5 + 27j, "a3′": -54 + 12j, "b′": -90 + 20j,
+                "n3": -0.3 - 1.0j, "d′": -85 + 0j}
+    vector = plans.PlanVector
+
+    def v(name, tail, head, kind, link):
+        return vector(name, tail, head, kind, link, vertices[head] - vertices[tail])
+
+    vectors = (v("a_A", "π", "a′", "absolute", "crank"), v("a^k_A3A2", "a′", "k", "coriolis", "lever"),
+               v("a^r_A3A2", "k", "a3′", "sliding", "lever"), v("a^n_A3C", "π", "n3", "normal", "lever"),
+               v("a^t_A3C", "n3", "a3′", "tangential", "lever"), v("a_A3", "π", "a3′", "absolute", "lever"),
+               v("a_B", "π", "b′", "absolute", "lever"), v("a_D", "π", "d′", "absolute", "rod"))
+    return plans.AccelerationPlan("acceleration", 0.0, "π", vertices, {}, vectors, (), {}, 1.0)
+
+
+@pytest.mark.parametrize("size", [(5.0, 5.0), (6.0, 3.5)])
+def test_a_name_is_nearer_its_own_vector_than_any_other_it_does_not_run_along(size):
+    # the rule: a reader takes a vector's name for that of the line nearest to the name's middle, so
+    # the tangential component's name must be nearer n3 a3′ than π a′ above it or π d′ below it (π a3′
+    # and π b′ run along it and do not count), and lie across neither (chapter 10's shaper plan once
+    # set it on π a′)
+    _, ax = plt.subplots(figsize=size)
+    plot_plans.draw_plan(_shaper_tangential_crowd(), ax=ax)
+    ax.figure.canvas.draw()
+    names = {t.get_text(): t for t in ax.texts}
+    name = "$a^{t}_{A_{3}C}$"
+    assert name in names
+    box = names[name].get_window_extent().transformed(ax.transData.inverted())
+    middle = complex((box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2)
+    t = np.linspace(0.0, 1.0, 401)
+
+    def to_middle(p, q):
+        return np.min(np.abs(p + t * (q - p) - middle))
+
+    def across(p, q):
+        z = p + t * (q - p)
+        return np.any((z.real > box.x0) & (z.real < box.x1) & (z.imag > box.y0) & (z.imag < box.y1))
+
+    own = to_middle(-0.3 - 1.0j, -54 + 12j)
+    for p, q in ((0j, -43 + 25j), (0j, -85 + 0j)):           # π a′ and π d′
+        assert own + 0.5 <= to_middle(p, q), (own, p, q)
+        assert not across(p, q), (p, q)
+
+
+@pytest.mark.parametrize("case", ["slotted lever at 0°", "slotted lever at 64°"])
+def test_the_mechanism_s_letters_lie_inside_its_frame(case):
+    # exercise 10.3's and §10.6's narrow lever drawings: B at the bottom sat on the frame, C at the
+    # top ran into the title; draw_plans widens the limits until every letter is inside
+    pivot, phi, size = {"slotted lever at 0°": (0.3, 0.0, (8.0, 7.4)),
+                        "slotted lever at 64°": (0.25, 64.0, (9.5, 9.0))}[case]
+    m = mech.SlottedLever(crank=0.1, pivot=(0.0, pivot))
+    sol = m.solve(np.radians([phi]), omega=10.0)
+    v = plans.velocity_plan(m, sol)
+    fig, axes = plot_plans.draw_plans(m, sol, v, plans.acceleration_plan(m, sol, velocity=v), figsize=size)
+    fig.canvas.draw()
+    frame = axes[0].get_window_extent()
+    for text in axes[0].texts:
+        if text.get_text():
+            box = text.get_window_extent()
+            assert (box.x0 >= frame.x0 and box.x1 <= frame.x1 and box.y0 >= frame.y0
+                    and box.y1 <= frame.y1), text.get_text()
+
+
+def test_short_components_are_named_as_long_ones():
+    # the four-bar's normal component a′n2 (about 10 mm) and the shaper's Coriolis component a′k
+    # (about 7 mm) carry their names, as the crank-slider's a′n2 and the slotted lever's a′k do
+    cases = [(mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05)), 60.0, "$a^{n}_{BA}$", (9.5, 9.2)),
+             (mech.Shaper(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22), 330.0,
+              "$a^{k}_{A_{3}A_{2}}$", (9.5, 10.0))]
+    for m, phi, name, size in cases:
+        sol = m.solve(np.radians([phi]), omega=10.0)
+        v = plans.velocity_plan(m, sol)
+        _, axes = plot_plans.draw_plans(m, sol, v, plans.acceleration_plan(m, sol, velocity=v), figsize=size)
+        assert name in [t.get_text() for t in axes[2].texts]

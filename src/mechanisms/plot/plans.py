@@ -152,6 +152,23 @@ def _boxes_distance(first: tuple[float, float, float, float], second: tuple[floa
     return float(np.hypot(dx, dy))
 
 
+def _along(tail: complex, head: complex, a: complex, b: complex, within: float = 2.0) -> bool:
+    """Whether the segment a–b runs along the line tail–head: its ends within ``within`` (mm) of it.
+
+    Two such lines (a component on an absolute vector, or beside it) are drawn so close that the
+    place of a name cannot tell them apart; the colour does.
+    """
+    u = (head - tail) / abs(head - tail)
+    return all(abs(((z - tail) * u.conjugate()).imag) <= within for z in (a, b))
+
+
+def _to_segment(point: complex, a: complex, b: complex) -> float:
+    """The distance from a point to the segment a–b."""
+    d = b - a
+    t = 0.0 if abs(d) == 0 else min(max(((point - a) * d.conjugate()).real / abs(d) ** 2, 0.0), 1.0)
+    return abs(point - (a + t * d))
+
+
 def _reach(hw: float, hh: float, u: complex, clear: float) -> float:
     """How far in the direction ``u`` to put a box's centre so that the box is ``clear`` from the point."""
     low, high = 0.0, hw + hh + clear
@@ -270,21 +287,28 @@ class _Placer:
         """A penalty for a letter nearer to another vertex, or a vector's name nearer to another vector.
 
         A reader takes a letter for the name of the vertex nearest to its middle, and a vector's name
-        for that of the line nearest to it; ``owner`` is the letter's own vertex, ``skip`` the index
-        of the named vector. A letter's own vertex must be the nearest by 1 mm of the drawing; a
-        vector's name may be as near (within 2 mm) to a line it runs along, as a component along an
-        absolute vector does.
+        for that of the line nearest to its middle; ``owner`` is the letter's own vertex, ``skip`` the
+        index of the named vector. A letter's own vertex must be the nearest by 1 mm of the drawing; a
+        vector's own line must be the nearest by half a millimetre of all vectors that do not run along
+        it (within 2 mm of its line: a component on an absolute vector cannot be told from it by its
+        place), and the name must not lie across any of those.
         """
         if owner is not None:
             others = [abs(centre - dot) for dot in self.dots if abs(dot - owner) > self.dot]
             return 25.0 if others and min(others) < abs(centre - owner) + 1.0 else 0.0
-        if skip is not None:
-            t = np.linspace(0.0, 1.0, 41)
-            along = [a + t * (b - a) for a, b in self.segments]
-            own = _box_distance(centre, half, along[skip])
-            others = [_box_distance(centre, half, z) for k, z in enumerate(along) if k != skip]
-            return 8.0 if others and min(others) < own - 2.0 else 0.0
-        return 0.0
+        if skip is None:
+            return 0.0
+        tail, head = self.segments[skip]
+        rivals = [(a, b) for k, (a, b) in enumerate(self.segments) if k != skip and not _along(tail, head, a, b)]
+        if not rivals:
+            return 0.0
+        own = _to_segment(centre, tail, head)
+        penalty = 25.0 if min(_to_segment(centre, a, b) for a, b in rivals) < own + 0.5 else 0.0
+        t = np.linspace(0.0, 1.0, 41)
+        for a, b in rivals:
+            if _box_distance(centre, half, a + t * (b - a)) == 0.0:      # a name across another vector
+                penalty += 10.0
+        return penalty
 
     def choices(self, text: Any, candidates: list[tuple[complex, float]], skip: int | None = None,
                 owner: complex | None = None) -> int:
@@ -329,12 +353,21 @@ class _Placer:
         normal = 1j * along
         clear = hw * abs(normal.real) + hh * abs(normal.imag) + 0.3 * hh
         out = []
-        for fraction in (0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8):
+        for fraction in np.arange(0.1, 0.91, 0.05):
             for side in (1.0, -1.0):
-                for extra in (0.0, 0.4, 0.8, 1.2, 1.6):
-                    preference = 2.0 * abs(fraction - 0.5) + (0.0 if side > 0 else 0.3) + 1.5 * extra
+                for extra in (-0.2, 0.0, 0.2, 0.4, 0.8, 1.2, 1.6):
+                    preference = 2.0 * abs(fraction - 0.5) + (0.0 if side > 0 else 0.3) + 1.5 * max(extra, 0.0)
                     out.append((tail + fraction * (head - tail) + side * (clear + extra * hh) * normal, preference))
         return out
+
+
+def _limits(plan: Plan, label_offset: float = 3.5) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The x and y limits (mm) of a plan's axes: its vertices with a margin for the letters."""
+    values = np.array([plan.drawn(label) for label in plan.vertices])
+    span = max(np.ptp(values.real), np.ptp(values.imag), 10.0)
+    margin = 0.12 * span + label_offset
+    return ((values.real.min() - margin, values.real.max() + margin),
+            (values.imag.min() - margin, values.imag.max() + margin))
 
 
 def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bool = True, title: str | None = None,
@@ -356,7 +389,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         The title; by default "velocity plan" or "acceleration plan" with the crank angle.
     label_offset : float
         Spacing of the letters (mm of the drawing): vertices closer than 0.8 of it share one letter
-        ("$b'$, $n_4$"), and vectors shorter than three times it carry no name.
+        ("$b'$, $n_4$"), and vectors shorter than twice it carry no name.
 
     Returns
     -------
@@ -397,13 +430,12 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         _arrow(ax, tail, head, shade, style, width, 3 if vector.kind == "absolute" else 4)
         segments.append((tail, head))
         widths.append(width)
-        if names and vector.kind != "absolute" and abs(head - tail) >= 3.0 * label_offset:
+        if names and vector.kind != "absolute" and abs(head - tail) >= 2.0 * label_offset:
             named.append((len(segments) - 1, vector, shade))
     values = np.array(list(drawn.values()))
-    span = max(np.ptp(values.real), np.ptp(values.imag), 10.0)
-    margin = 0.12 * span + label_offset
-    ax.set_xlim(values.real.min() - margin, values.real.max() + margin)
-    ax.set_ylim(values.imag.min() - margin, values.imag.max() + margin)
+    (x0, x1), (y0, y1) = _limits(plan, label_offset)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
     # the vertices; vertices closer than the letters' size share one label, "a, b"
     groups: list[list[str]] = []
@@ -447,7 +479,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         jobs.append((text, placer.beside(text, tail, head), index, None))
     # the text with the fewest good places chooses first (a name beside a short vector in a crowd),
     # then the letters of crowded vertices, then the rest
-    for text, candidates, skip, owner in sorted(jobs, key=lambda job: placer.choices(*job)):
+    for text, candidates, skip, owner in sorted(jobs, key=lambda job: (job[2] is None, placer.choices(*job))):
         placer.place(text, candidates, skip=skip, optional=skip is not None, owner=owner)
     ax.set_xlabel("mm of the drawing")
     ax.set_ylabel("mm of the drawing")
@@ -469,7 +501,11 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     """
     count = 1 if acceleration is None else 2
     fig = plt.figure(figsize=figsize or (4.6 * count + 1.0, 7.6))
-    grid = fig.add_gridspec(2, count, height_ratios=(1.0, 1.7))
+    # a wide plan beside a tall one gets the more width: each plan's share grows with the square root
+    # of its axes' width-to-height ratio, so neither is drawn much smaller than the other
+    shapes = [_limits(plan) for plan in (velocity, acceleration) if plan is not None]
+    ratios = [np.sqrt((x1 - x0) / (y1 - y0)) for (x0, x1), (y0, y1) in shapes]
+    grid = fig.add_gridspec(2, count, height_ratios=(1.0, 1.7), width_ratios=ratios)
     axes = [fig.add_subplot(grid[0, :])] + [fig.add_subplot(grid[1, k]) for k in range(count)]
     draw(mechanism, solution, index=index, ax=axes[0])
     for name, position in velocity.positions.items():
@@ -482,7 +518,32 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     if acceleration is not None:
         draw_plan(acceleration, ax=axes[2], title="acceleration plan")
     fig.tight_layout()
+    _keep_letters_inside(axes[0])       # a joint's letter neither on the frame nor in the title
+    fig.tight_layout()
+    _keep_letters_inside(axes[0])
     return fig, axes
+
+
+def _keep_letters_inside(ax: Axes, pad: float = 3.0) -> None:
+    """Widen the limits of a drawing until every text on it lies ``pad`` points inside its frame."""
+    renderer = ax.figure.canvas.get_renderer()   # type: ignore[attr-defined]
+    pad_pixels = pad * ax.figure.dpi / 72
+    for _ in range(4):
+        ax.apply_aspect()
+        frame = ax.get_window_extent(renderer)
+        boxes = [t.get_window_extent(renderer) for t in ax.texts if t.get_visible() and t.get_text()]
+        if not boxes:
+            return
+        left = max(frame.x0 + pad_pixels - min(b.x0 for b in boxes), 0.0)
+        right = max(max(b.x1 for b in boxes) - frame.x1 + pad_pixels, 0.0)
+        bottom = max(frame.y0 + pad_pixels - min(b.y0 for b in boxes), 0.0)
+        top = max(max(b.y1 for b in boxes) - frame.y1 + pad_pixels, 0.0)
+        if left + right + bottom + top < 0.5:
+            return
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        per_x, per_y = (x1 - x0) / frame.width, (y1 - y0) / frame.height
+        ax.set_xlim(x0 - 1.2 * left * per_x, x1 + 1.2 * right * per_x)
+        ax.set_ylim(y0 - 1.2 * bottom * per_y, y1 + 1.2 * top * per_y)
 
 
 def _extend(ax: Axes, first: complex, second: complex, beyond: float = 0.15, label: str = "_nolegend_") -> None:
