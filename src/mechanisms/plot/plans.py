@@ -403,9 +403,11 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
     positions round its vertex (beside its vector) and put where it keeps a gap of a quarter of its
     font size from every other letter, every vertex and every arrowhead, farther if it can (up to
     0.8 of its font size), covers as little of the vectors as possible and is taken for no other
-    vertex or vector, preferably away from the plan's middle (the pole's) or on the left of its
-    vector. The text with the fewest good positions (a name beside a short vector in a crowd)
-    chooses first. A name that cannot keep its gap anywhere is left out.
+    vertex or vector (a name's middle is nearer its own vector than any other it does not run along,
+    and lies across none), preferably away from the plan's middle (the pole's) or on the left of its
+    vector. The names choose first, since they are bound to their vectors, those with the fewest good
+    positions (beside a short vector in a crowd) before the others; then the letters, in the same
+    order. A name that cannot keep its gap anywhere is left out.
     """
     if ax is None:
         _, ax = plt.subplots(figsize=(5.0, 5.0))
@@ -477,8 +479,8 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
         text = ax.text(0.0, 0.0, name, fontsize=size, color=shade, ha="center", va="center", zorder=5,
                        bbox=_LABEL_BOX)
         jobs.append((text, placer.beside(text, tail, head), index, None))
-    # the text with the fewest good places chooses first (a name beside a short vector in a crowd),
-    # then the letters of crowded vertices, then the rest
+    # the names first (a letter can go all round its vertex, a name only beside its vector), each kind
+    # in the order of its fewest good places (a name beside a short vector in a crowd first)
     for text, candidates, skip, owner in sorted(jobs, key=lambda job: (job[2] is None, placer.choices(*job))):
         placer.place(text, candidates, skip=skip, optional=skip is not None, owner=owner)
     ax.set_xlabel("mm of the drawing")
