@@ -26,6 +26,17 @@ def test_draw_puts_every_joint_and_label():
     plt.close("all")
 
 
+def test_draw_gives_a_link_the_colour_asked_for_and_the_others_their_roles():
+    rockers = mech.SlottedRockers(crank=0.1, pivot=(0.0, 0.3), rocker_pivot=(0.12, 0.38), rocker=0.2)
+    sol = rockers.solve(np.radians([60.0]), order=0)
+    ax = plot.draw(rockers, sol, colours={"rocker": "#8c564b"})
+    bars = {ln.get_gid(): ln.get_color() for ln in ax.lines if ln.get_gid()}
+    assert bars == {"lever": "#2ca02c", "crank": "#1f77b4", "rocker": "#8c564b"}
+    with pytest.raises(mech.InvalidParameterError, match="no link 'slot'"):
+        plot.draw(rockers, sol, colours={"slot": "#8c564b"})
+    plt.close("all")
+
+
 def test_diagram_ticks_every_30_degrees():
     ax = plot.diagram(PHI, {"s": np.cos(PHI), "v": np.sin(PHI)}, "s, m")
     ticks = ax.get_xticks()

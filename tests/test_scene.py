@@ -458,3 +458,24 @@ def test_labels_can_use_the_pages_letters_while_the_player_keeps_the_joints():
     plain = scene(lever, frames=8).html()
     assert re.search(r'data-joint="C"[^>]*>C</text>', plain)
     assert plain.count('class="mech-label"') == html.count('class="mech-label"')
+
+
+def test_a_link_can_have_a_colour_of_its_own_in_the_scene_and_its_still():
+    rockers = mech.SlottedRockers(crank=0.1, pivot=(0.0, 0.3), rocker_pivot=(0.12, 0.38), rocker=0.2)
+    brown = "#8C564B"
+    s = scene(rockers, frames=8, colours={"rocker": brown})
+    bars = {part["link"]: part["colour"] for part in s.data["parts"] if "bar" in part}
+    assert bars == {"lever": "#2ca02c", "crank": "#1f77b4", "rocker": "#8c564b"}
+    plain = {part["link"]: part["colour"] for part in scene(rockers, frames=8).data["parts"] if "bar" in part}
+    assert plain["rocker"] == "#2ca02c"                  # by role, the lever's green, without the option
+    assert 'stroke="#8c564b"' in s.html()
+
+
+@pytest.mark.parametrize("colours, cause", [({"slot": "#8c564b"}, "no link 'slot'"),
+                                            ({"rocker": "brown"}, "'rocker' has 'brown'"),
+                                            ({"rocker": "#8c564"}, "'rocker' has '#8c564'")])
+def test_a_colour_for_a_link_the_mechanism_lacks_or_not_hex_is_refused(colours, cause):
+    rockers = mech.SlottedRockers(crank=0.1, pivot=(0.0, 0.3), rocker_pivot=(0.12, 0.38), rocker=0.2)
+    with pytest.raises(mech.InvalidParameterError, match="colours") as caught:
+        scene(rockers, frames=8, colours=colours)
+    assert cause in str(caught.value)

@@ -21,7 +21,8 @@ from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
 from ..linkages.groups import PRP, RPP, RRP, Line
 from ..core.errors import InvalidParameterError
 from ..core.motion import PointMotion
-from ..present.colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
+from ..present.colours import (ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR,
+                               link_colours)
 from .workarounds import light_figures_in_notebooks
 
 # axis labels typeset as the book's math (mathtext), never plain letters
@@ -222,7 +223,8 @@ def _extent(solution: Solution) -> float:
 def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | None = None,
          labels: bool | Mapping[str, str] = True,
          size: float | None = None, guide_half_length: float | None = None,
-         label_offset: tuple[float, float] | Mapping[str, tuple[float, float]] | None = None) -> Axes:
+         label_offset: tuple[float, float] | Mapping[str, tuple[float, float]] | None = None,
+         colours: Mapping[str, str] | None = None) -> Axes:
     """Draw a mechanism at one crank position: bars, hinges, hatched frame, blocks, guides.
 
     A guide fixed to the frame is drawn hatched; a guide or slot carried by a moving link
@@ -248,17 +250,20 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
         Where the joint names sit relative to their joints, in points: one ``(dx, dy)`` for all, or a
         dict ``{joint: (dx, dy)}`` (by package name) for the names it lists. By default a name sits on
         the side of its joint that is farthest from the joint's bars and pivot symbol.
+    colours : dict, optional
+        ``{link name: "#rrggbb"}``: links drawn in a colour of their own instead of their role's
+        (:func:`~mechanisms.present.colours.link_colours`), e.g. the second of two rockers.
 
     Returns
     -------
     matplotlib Axes
     """
     ax = _new_axes(ax)
+    colour_of = link_colours(mechanism, colours)
     size = size or 0.03 * _extent(solution)
     where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
     guide_half_length = guide_half_length or 0.6 * _extent(solution)
     artists: list[Any] = []
-    roles: dict[str, str] = {}
     spokes: dict[str, list[complex]] = {name: [] for name in where}   # directions taken at each joint
     for item in mechanism.scheme():
         if isinstance(item, Guide):
@@ -267,14 +272,13 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
             _pivot_symbol(ax, where[item.joint], size)
             spokes[item.joint].append(-1j)                    # the pivot symbol hangs below
         elif isinstance(item, Bar):
-            roles[item.link] = item.role
             pts = [where[j] for j in item.joints]
             for first, second in zip(item.joints, item.joints[1:]):
                 if where[second] != where[first]:
                     direction = (where[second] - where[first]) / abs(where[second] - where[first])
                     spokes[first].append(direction)
                     spokes[second].append(-direction)
-            artists += ax.plot([p.real for p in pts], [p.imag for p in pts], color=ROLE_COLOURS.get(item.role, "k"),
+            artists += ax.plot([p.real for p in pts], [p.imag for p in pts], color=colour_of[item.link],
                                lw=3.0, solid_capstyle="round", zorder=2, label="_nolegend_", gid=item.link)
         elif isinstance(item, Block):
             angle = item.angle if isinstance(item.angle, (int, float)) else float(
@@ -282,7 +286,7 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
             _block_symbol(ax, where[item.joint], angle, size)
     for link, through, angle, blocks in moving_guides(mechanism, solution, index):
         _moving_guide_symbol(ax, through, angle, [where[b] for b in blocks],
-                             ROLE_COLOURS.get(roles.get(link, "slider"), "k"), 2.5 * size)
+                             colour_of.get(link, ROLE_COLOURS["slider"]), 2.5 * size)
     hinges = np.array(list(where.values()))
     ax.plot(hinges.real, hinges.imag, "o", ms=6, mfc="white", mec="black", mew=1.2, zorder=4)
     if labels:

@@ -36,7 +36,7 @@ import numpy as np
 from ..core.errors import AssemblyError, SingularPositionWarning, InvalidParameterError
 from ..core.motion import PointMotion
 from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
-from .colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
+from .colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR, link_colours
 
 __all__ = [
     "Scene",
@@ -234,7 +234,7 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
              title: str = "", angle_symbol: str = "φ", omega: float = 1.0,
              labels: bool | Mapping[str, str] = True,
              still: Mapping[str, float] | None = None, still_angle: float | None = None,
-             caption: str = "") -> Scene:
+             caption: str = "", colours: Mapping[str, str] | None = None) -> Scene:
     """A family of moving figures, one per value (or pair of values) of the parameters, precomputed.
 
     Parameters
@@ -276,6 +276,9 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
         The crank angle (rad) of the still image (default: the first frame where it assembles).
     caption : str
         A sentence under the figure: what to try and what to notice.
+    colours : mapping, optional
+        ``{link name: "#rrggbb"}``: links drawn in a colour of their own instead of their role's, as
+        :func:`mechanisms.plot.draw` takes it (the second of two rockers).
 
     Returns
     -------
@@ -298,7 +301,8 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
         members.append(_member(build(**values), phi, order, omega, _resolved(points or {}, values), arrows,
                                readout))
     mechanisms = [m["mechanism"] for m in members]
-    data = _layout(mechanisms[0], members, phi, paths, arrows, lines, readout, labels)
+    data = _layout(mechanisms[0], members, phi, paths, arrows, lines, readout, labels,
+                   link_colours(mechanisms[0], colours))
     data.update(title=title, angle=angle_symbol, omega=omega, keys=[list(k) for k in keys],
                 parameters=[{"name": p.name, "label": p.label, "unit": p.unit, "digits": p.digits,
                              "values": list(p.values)} for p in parameters])
@@ -408,7 +412,8 @@ def _spread(values: np.ndarray, valid: np.ndarray, dtype: type) -> np.ndarray:
 # --- the data ---------------------------------------------------------------------------------------------
 
 def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Sequence[str], arrows: Sequence[Arrow],
-            lines: Sequence[Line], readout: Sequence[Readout], labels: bool | Mapping[str, str]) -> dict[str, Any]:
+            lines: Sequence[Line], readout: Sequence[Readout], labels: bool | Mapping[str, str],
+            colours: Mapping[str, str]) -> dict[str, Any]:
     joints = _joints(first)
     body = np.concatenate([np.concatenate([w[np.isfinite(w)] for name, w in m["where"].items()
                                            if name in joints] or [np.zeros(0)])
@@ -449,7 +454,7 @@ def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Seque
         "size": 0.025 * extent,
         "view": _view(everything, extent),
         "labels": labels if isinstance(labels, bool) else True,
-        "parts": _parts(first),
+        "parts": _parts(first, colours),
         "paths": list(paths),
         "lines": [{"points": list(line.points), "colour": line.colour, "dashed": line.dashed} for line in lines],
         "arrows": [{"at": a.at, "label": a.label, "colour": a.colour, "kind": a.kind} for a in arrows],
@@ -520,7 +525,7 @@ def _block_angles(mechanism: Mechanism) -> set[str]:
     return {item.angle for item in mechanism.scheme() if isinstance(item, Block) and isinstance(item.angle, str)}
 
 
-def _parts(mechanism: Mechanism) -> list[dict[str, Any]]:
+def _parts(mechanism: Mechanism, colours: Mapping[str, str]) -> list[dict[str, Any]]:
     parts: list[dict[str, Any]] = []
     guides = 0
     for item in mechanism.scheme():
@@ -530,7 +535,7 @@ def _parts(mechanism: Mechanism) -> list[dict[str, Any]]:
         elif isinstance(item, Ground):
             parts.append({"ground": item.joint})
         elif isinstance(item, Bar):
-            parts.append({"bar": list(item.joints), "colour": ROLE_COLOURS.get(item.role, "#000000"),
+            parts.append({"bar": list(item.joints), "colour": colours[item.link],
                           "link": item.link})
         elif isinstance(item, Block):
             parts.append({"block": item.joint, "angle": item.angle if isinstance(item.angle, str)
