@@ -35,10 +35,21 @@
     return node;
   }
 
-  function label(text) {              // "s_t" is written s with a subscript t: "_" subscripts one character
-    var span = element("span", {}), parts = String(text).split(/_(.)/);
+  function label(text) {              // a symbol as the book sets it: letters italic, "_t" a subscript t
+    var span = element("span", { "class": "mech-symbol" }), parts = String(text).split(/_(.)/);
     parts.forEach(function (part, index) {
-      if (index % 2) span.appendChild(element("sub", {}, part));
+      var target = index % 2 ? span.appendChild(element("sub", {})) : span;
+      part.split(/(\p{L}+)/u).forEach(function (piece, k) {
+        if (piece) target.appendChild(k % 2 ? element("i", {}, piece) : document.createTextNode(piece));
+      });
+    });
+    return span;
+  }
+
+  function rich(text) {               // a note: text, with symbols between dollars set as label() sets them
+    var span = element("span", {});
+    String(text).split(/\$([^$]*)\$/).forEach(function (part, index) {
+      if (index % 2) span.appendChild(label(part));
       else if (part) span.appendChild(document.createTextNode(part));
     });
     return span;
@@ -162,11 +173,12 @@
     if (this.current.valid.indexOf("1") < 0) {
       notes.push("does not assemble at any crank angle");
     } else if (!full) {
-      notes.push("assembles only for " + d.angle + " in " + this.current.intervals.map(function (i) {
+      notes.push("assembles only for $" + d.angle + "$ in " + this.current.intervals.map(function (i) {
         return "[" + fmt(i[0], 1) + "°, " + fmt(i[1], 1) + "°]";
       }).join(" and "));
     }
-    this.notes.textContent = notes.concat(this.current.notes).join(" · ");
+    this.notes.textContent = "";
+    this.notes.appendChild(rich(notes.concat(this.current.notes).join(" · ")));
     this.root.classList.toggle("mech-partial", !full);
     this.show(this.frame);
   };

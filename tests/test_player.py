@@ -69,7 +69,7 @@ def make_scenes():
     family = explorer(four_bar, [Parameter("crank", "L_1", "m", CRANKS, 2)], paths=["B"], title="four-bar family",
                       readout=[Readout("ψ", "°", lambda sol, m: np.degrees(sol.angle("coupler").value), 2),
                                Readout("ω_3", "rad/s", lambda sol, m: sol.angle("rocker").omega, 3, order=1)],
-                      notes=lambda m: [f"crank {m.crank:g} m"], caption="Drag the crank length.")
+                      notes=lambda m: [f"crank $L_1$ = {m.crank:g} m"], caption="Drag the crank length.")
     pair = explorer(lambda rod, offset: mech.CrankSlider(crank=R, rod=rod, offset=offset),
                     [Parameter("rod", "L_2", "m", RODS), Parameter("offset", "e", "m", OFFSETS)],
                     readout=crank_slider_readout(), title="rod and offset", still={"rod": 0.3, "offset": 0.02})
@@ -190,7 +190,7 @@ def test_the_parameter_slider_changes_the_mechanism(page, scenes):
     after = state(page, "family")
     assert after["member"] == scenes["family"].member_index(crank=1.5)
     assert after["bars"] != before["bars"], "the bars did not change with the crank length"
-    assert after["notes"] != before["notes"] and "crank 1.5 m" in after["notes"], after["notes"]
+    assert after["notes"] != before["notes"] and "crank L1 = 1.5 m" in after["notes"], after["notes"]
     assert after["values"] != before["values"]
     shown = page.eval_on_selector(player("family") + " output.mech-parameter-value", "o => o.textContent")
     assert shown.strip() == "= 1.50 m"
@@ -390,3 +390,14 @@ def test_site_players_work(browser, servers, edition, page_path):
         assert problems == [], "\n".join(problems)
     finally:
         context.close()
+
+
+def test_symbols_in_labels_and_notes_are_set_as_the_texts_math(page, scenes):
+    """Letters of a symbol in italics, "_1" a subscript, digits upright; a note's $…$ likewise, no dollar left."""
+    root = player("family")
+    name = page.eval_on_selector(root + " .mech-slider-name .mech-symbol", "s => s.innerHTML")
+    assert name == "<i>L</i><sub>1</sub>", name
+    note = page.eval_on_selector(root + " .mech-notes", "n => n.innerHTML")
+    assert '<span class="mech-symbol"><i>L</i><sub>1</sub></span>' in note and "$" not in note, note
+    readout = page.eval_on_selector_all(root + " .mech-readout .mech-symbol", "ss => ss.map(s => s.innerHTML)")
+    assert readout[:3] == ["<i>φ</i>", "<i>ψ</i>", "<i>ω</i><sub>3</sub>"], readout

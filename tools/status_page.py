@@ -32,6 +32,9 @@ def pinned() -> list[tuple[str, str, str]]:
 def main() -> None:
     times = json.loads(TIMES.read_text()) if TIMES.exists() else {}
     lines = ["# Status of the book", "",
+             "This page is for readers who run the book's notebooks themselves, and for teachers who",
+             "install it for a course: how long each notebook takes and which versions of the tools",
+             "the book was checked with. Nothing in it is needed to follow the chapters.", "",
              "Every chapter and exercise notebook is executed ahead of time and stored with its outputs;",
              "`make test` re-executes each one and compares the outputs (nbval, strict). The times below",
              "are those of the last execution by `tools/run_notebooks.py`.", "",

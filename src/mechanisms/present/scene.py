@@ -68,7 +68,8 @@ class Parameter:
     name : str
         The keyword of the family's ``build`` function (``"rod"``).
     label : str
-        Its symbol as the book writes it (``"L₂"``).
+        Its symbol as the book writes it (``"L₂"`` or ``"L_2"``); the player sets its letters in
+        italics, as the text's math, and ``_x`` as a subscript x.
     unit : str
         Its unit as printed (``"m"``, ``"°"``, ``""``).
     values : sequence of float
@@ -86,7 +87,7 @@ class Parameter:
 
 @dataclass(frozen=True)
 class Readout:
-    """A value the player prints at every frame: ``label = value unit``.
+    """A value the player prints at every frame: ``label = value unit`` (the label's letters in italics).
 
     ``value(solution, mechanism)`` returns one number per position of the solution (already in the
     unit printed, e.g. degrees); ``order`` is the order of the solve it needs (1 for velocities).
@@ -260,7 +261,8 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
     readout : sequence of Readout
         Values printed at every frame, after the crank angle.
     notes : callable, optional
-        ``notes(mechanism)`` gives lines of text for a member (its Grashof class, its stroke …).
+        ``notes(mechanism)`` gives lines of text for a member (its Grashof class, its stroke …); a
+        symbol between dollars is set as the text's math (``"stroke $H$ = 0.16 m"``: H in italics).
     title : str
         The figure's name (shown by the player, and in ``repr``).
     angle_symbol : str
