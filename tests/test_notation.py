@@ -108,3 +108,40 @@ def test_every_symbol_once():
         kind = "with different meanings" if meaning != first_meaning else "twice"
         problems.append(f"{symbol} {kind}: §{first_title} ({first_meaning!r}) and §{title} ({meaning!r})")
     assert problems == [], "the notation appendix lists a symbol more than once:\n" + "\n".join(problems)
+
+
+# --- the package's docstrings and messages speak the book's notation -------------------------------------
+# The API pages render the docstrings, and the error messages reach the reader too: a symbol the
+# appendix gives one meaning must not appear there with another (issue 19's list: Φ is the constraint
+# vector, not an inertia force; α, β are a point's reference coordinates, not an angular acceleration,
+# which is ε; K, μ₁ are the time ratio and the transmission angle, not the paper's K_v, γ; angular
+# rates are in 1/s). A source's own letter may be named as the source's ("the paper writes … K_v").
+
+SOURCE = ROOT / "src" / "mechanisms"
+NOT_THE_BOOKS = {
+    "rad/s": "angular rates are in 1/s",
+    "Φ = −m": "the inertia force is F_in (Φ is the constraint vector)",
+    "M_Φ": "the inertia moment is M_in",
+    "Q_loads": "the loads' reduced torque is M_red",
+    "B1B2": "the rocker's end in the limit positions is B₀, B_x",
+    "(iα − ω²)": "the angular acceleration is ε",
+    "α = θ_tt": "the angular acceleration is ε",
+    "J_S α": "the angular acceleration is ε",
+}
+PAPER_NAMES = re.compile(r"\bK_v\b|\bγ\b")          # the synthesis paper's letters for K and μ₁
+
+
+def test_the_docstrings_and_messages_use_the_books_symbols():
+    found = []
+    for path in sorted(SOURCE.rglob("*.py")):
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            for text, why in NOT_THE_BOOKS.items():
+                if text in line:
+                    found.append(f"{path.relative_to(ROOT)}:{number}: {text!r}: {why}")
+    assert not found, "\n".join(found)
+
+
+def test_the_synthesis_speaks_of_k_and_mu_naming_the_papers_letters_once():
+    text = (SOURCE / "analysis" / "synthesis.py").read_text(encoding="utf-8")
+    lines = [line for line in text.splitlines() if PAPER_NAMES.search(line)]
+    assert len(lines) == 1 and "the paper writes" in lines[0], lines

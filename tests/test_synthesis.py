@@ -93,7 +93,7 @@ def test_bad_inputs():
         synthesize_coupler_output(1.2, coupler_length_asymptote(1.2))
     with pytest.raises(InvalidParameterError, match="rocker"):
         synthesize_coupler_output(1.2, 0.5, rocker=-1.0)
-    with pytest.raises(InvalidParameterError, match="K_v > 1"):
+    with pytest.raises(InvalidParameterError, match="K > 1"):
         synthesize_coupler_output(1.0, 0.5)          # no quick return: the crank would have no length
     with pytest.raises(InvalidParameterError, match="time_ratio"):
         largest_rotatable_angle(1.0001)

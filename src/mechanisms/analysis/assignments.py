@@ -91,5 +91,5 @@ def round_mm(value: float) -> float:
 
 
 def crank_speed(rng: np.random.Generator, low: int, high: int) -> float:
-    """A crank speed (rad/s) that is a multiple of 5 in [low, high]."""
+    """A crank speed (1/s) that is a multiple of 5 in [low, high]."""
     return float(5 * rng.integers(low // 5, high // 5 + 1))

@@ -237,7 +237,7 @@ def slider_extremes(mechanism: CrankSlider, omega: float = 1.0, samples: int = 7
     mechanism : CrankSlider
         A mechanism whose crank turns fully with L2 > L1 + |e| (otherwise the acceleration is unbounded).
     omega : float
-        Crank speed φ_t (rad/s); velocities scale with ω and accelerations with ω².
+        Crank speed φ_t (1/s); velocities scale with ω and accelerations with ω².
     samples : int
         Crank positions of the coarse search; each extreme is then refined by golden-section search to
         round-off.
@@ -249,7 +249,7 @@ def slider_extremes(mechanism: CrankSlider, omega: float = 1.0, samples: int = 7
     """
     omega = require_finite("omega", omega)
     if omega == 0.0:
-        raise InvalidParameterError("omega", omega, "a crank speed other than 0 rad/s (at rest there are no extremes)")
+        raise InvalidParameterError("omega", omega, "a crank speed other than 0 1/s (at rest there are no extremes)")
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 8:
         raise InvalidParameterError("samples", samples, "a whole number ≥ 8 of crank positions")
     if not mechanism.rod > mechanism.crank + abs(mechanism.offset):
@@ -281,7 +281,7 @@ def approximate_slider(mechanism: CrankSlider, phi: ArrayLike, omega: float = 1.
     phi : array_like
         Crank angles φ (rad).
     omega : float
-        Crank speed φ_t (rad/s).
+        Crank speed φ_t (1/s).
 
     Returns
     -------

@@ -2,11 +2,12 @@
 
 Reduced to its crank, a mechanism with one degree of freedom has the kinetic energy
 ``T = J_red(φ) φ_t²/2`` (:func:`~mechanisms.analysis.energy.reduced_inertia`). Lagrange's
-equation ``d/dt(∂T/∂φ_t) − ∂T/∂φ = Q`` then reads
+equation ``d/dt(∂T/∂φ_t) − ∂T/∂φ = Q_φ`` (Q_φ the generalized force) then reads
 
     J_red(φ) φ_tt + ½ J_red'(φ) φ_t² = M_d − M_c(φ),
 
-with M_d the driving torque and ``M_c = dV/dφ − Q_loads`` the reduced torque of the resistance
+with M_d the driving torque and ``M_c = dV/dφ − M_red`` the reduced torque of the resistance
+(M_red the reduced torque of the applied loads)
 (gravity, springs and applied loads). This module evaluates that equation exactly, integrates
 it in time with the classical Runge–Kutta method, and gives the two classical figures of a
 machine in steady motion: the coefficient of speed fluctuation and the flywheel that keeps it
@@ -55,7 +56,7 @@ class ReducedModel:
     slope : ndarray
         dJ_red/dφ (kg·m²/rad).
     resistance : ndarray
-        M_c(φ) = dV/dφ − Q_loads (N·m): the torque the crank must supply, at rest, to hold the
+        M_c(φ) = dV/dφ − M_red (N·m): the torque the crank must supply, at rest, to hold the
         mechanism against gravity, springs and loads.
     """
 
@@ -86,7 +87,7 @@ def reduced_model(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: Arr
     -----
     At φ_t = 1 and φ_tt = 0 the velocities are the velocity ratios (derivatives with respect to
     φ) and the accelerations their derivatives, so that T = J_red/2, dT/dt = J_red'/2,
-    dV/dt = dV/dφ and the power of the loads is Q_loads: all exact.
+    dV/dt = dV/dφ and the power of the loads is M_red: all exact.
     """
     solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=2)
     shape = np.shape(solution.phi)
@@ -119,7 +120,7 @@ def angular_acceleration(mechanism: Mechanism, masses: Mapping[str, LinkMass], p
                          drive: Drive, t: ArrayLike = 0.0, loads: Sequence[Force | Torque] = (),
                          gravity: float = STANDARD_GRAVITY, springs: Sequence[Spring] = (),
                          flywheel: ArrayLike = 0.0) -> np.ndarray:
-    """The crank's angular acceleration from the equation of motion (rad/s²).
+    """The crank's angular acceleration from the equation of motion (1/s²).
 
     ``φ_tt = (M_d − M_c − ½ J_red' φ_t²)/J_red``; ``drive`` is a torque (N·m) or a function
     ``M_d(t, φ, φ_t)`` (a motor's characteristic).
@@ -139,7 +140,7 @@ class Run:
     t : ndarray, shape (n + 1,)
         Times (s).
     phi, omega : ndarray, shape (n + 1,) or (n + 1, k)
-        Crank angle φ (rad, not wrapped) and speed φ_t (rad/s); one column per run when several
+        Crank angle φ (rad, not wrapped) and speed φ_t (1/s); one column per run when several
         runs (e.g. several flywheels) were integrated together.
     """
 
@@ -165,7 +166,7 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
     steps : int
         Number of fixed time steps h = duration/steps.
     phi0, omega0 : float or array_like
-        Initial crank angle (rad) and speed (rad/s).
+        Initial crank angle (rad) and speed (1/s).
 
     Returns
     -------
@@ -218,7 +219,7 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
 
 @dataclass(frozen=True)
 class SpeedFluctuation:
-    """Extreme and mean crank speeds (rad/s) over whole revolutions, and δ = (ω_max − ω_min)/ω_m."""
+    """Extreme and mean crank speeds (1/s) over whole revolutions, and δ = (ω_max − ω_min)/ω_m."""
 
     minimum: np.ndarray
     maximum: np.ndarray
@@ -299,6 +300,6 @@ def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> flo
     subtracted to size the flywheel; the variable part of J_red is neglected.
     """
     swing = require_non_negative("swing", swing, "J")
-    mean_speed = require_positive("mean_speed", mean_speed, "rad/s")
+    mean_speed = require_positive("mean_speed", mean_speed, "1/s")
     coefficient = require_positive("coefficient", coefficient, "(δ = (ω_max − ω_min)/ω_m)")
     return swing / (coefficient * mean_speed**2)

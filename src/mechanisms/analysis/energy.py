@@ -9,7 +9,7 @@ energies. This module does that for any mechanism of the package, from its solut
   a joint that carries a sliding block (``"B"``), which translates with that joint;
 * the motion of each centre of mass, the kinetic energy T and potential energy V (gravity and
   optional springs to the frame) with their exact time derivatives (power);
-* the inertia forces and moments of d'Alembert, ``−m a_S`` and ``−J_S α``;
+* the inertia forces and moments of d'Alembert, ``F_in = −m a_S`` and ``M_in = −J_S ε``;
 * applied loads (:class:`Force`, :class:`Torque`) and their power;
 * the reduced (equivalent) moment of inertia J_red(φ) with its exact derivative dJ_red/dφ, the
   reduced torque of the loads, and the driving torque from the power balance.
@@ -193,9 +193,9 @@ class InertiaLoad:
     point : ndarray of complex
         The centre of mass S (m).
     force : ndarray of complex
-        ``Φ = −m a_S`` (N).
+        ``F_in = −m a_S`` (N).
     moment : ndarray
-        ``M_Φ = −J_S α`` (N·m), zero for a translating block.
+        ``M_in = −J_S ε`` (N·m), zero for a translating block.
     """
 
     point: np.ndarray
@@ -262,7 +262,7 @@ def kinetic_energies(solution: Solution, masses: Mapping[str, LinkMass]) -> dict
     Returns
     -------
     dict of Motion
-        ``T_i = m v_S²/2 + J_S ω²/2`` (J) and ``dT_i/dt = m v_S·a_S + J_S ω α`` (W).
+        ``T_i = m v_S²/2 + J_S ω²/2`` (J) and ``dT_i/dt = m v_S·a_S + J_S ω ε`` (W).
 
     Notes
     -----
@@ -342,7 +342,7 @@ def potential_energy(solution: Solution, masses: Mapping[str, LinkMass], gravity
 # --- inertia forces -----------------------------------------------------------------------------
 
 def inertia_forces(solution: Solution, masses: Mapping[str, LinkMass]) -> dict[str, InertiaLoad]:
-    """Newton's inertia force ``−m a_S`` and moment ``−J_S α`` of each body (d'Alembert).
+    """Newton's inertia force ``F_in = −m a_S`` and moment ``M_in = −J_S ε`` of each body (d'Alembert).
 
     Requires a solution of order 2. Added to the applied and joint forces of a body, they
     make a system in equilibrium (kinetostatics, :mod:`mechanisms.analysis.kinetostatics`).

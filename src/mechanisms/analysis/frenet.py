@@ -5,13 +5,13 @@ Frenet frame of the crank-pin circle (radius r, curvature k = 1/r). Its unit tan
 along the pin's velocity for a counter-clockwise crank, its principal normal n = iτ towards the
 centre O. With the crank angle ψ = ks measured from +x (s is the arc length of the pin's path),
 
-    A = O + r·exp(iψ),    τ = i·exp(iψ),    α = ψ + π/2   (the tangent's angle from +x).
+    A = O + r·exp(iψ),    τ = i·exp(iψ),    θ_τ = ψ + π/2   (the tangent's angle from +x; the source's α).
 
 The driven link makes the angle φ with τ; the source's γ is defined by the link's direction
-θ = π − γ from +x, so that φ = θ − α = π/2 − γ − ks (the source's relation (1)). A point of
+θ_AB = π − γ from +x, so that φ = θ_AB − θ_τ = π/2 − γ − ks (the source's relation (1)). A point of
 the link at the distance ρ from A (negative: on the other side of A) is
 
-    R(s) = A + ρ·exp(i(α + φ)) = A + ρ(cos φ·τ + sin φ·n),
+    R(s) = A + ρ·exp(i(θ_τ + φ)) = A + ρ(cos φ·τ + sin φ·n),
 
 and with the Frenet formulas τ' = k n, n' = −k τ (a prime is d/ds):
 
@@ -137,7 +137,7 @@ class RotationLaw:
     def position(self, rho: float) -> np.ndarray:
         """The point at distance ρ from the crank pin along the driven link, ``x + iy`` (m).
 
-        ``R = O + r·exp(iψ) + ρ·exp(i(α + φ))``; in coordinates
+        ``R = O + r·exp(iψ) + ρ·exp(i(θ_τ + φ))``; in coordinates
         ``x = r cos ks − ρ sin(φ + ks)``, ``y = r sin ks + ρ cos(φ + ks)`` (O at the origin).
         """
         psi = self.crank_angle
@@ -177,7 +177,7 @@ class RotationLaw:
     def to_fixed(self, tangential: np.ndarray, normal: np.ndarray) -> np.ndarray:
         """A vector given on τ and n, as ``x + iy`` on the fixed axes (the source's (11)).
 
-        ``(x + iy) = (tangential + i·normal)·exp(iα)`` with α = ks + π/2:
+        ``(x + iy) = (tangential + i·normal)·exp(iθ_τ)`` with θ_τ = ks + π/2:
         ``x = −V_τ sin ks − V_n cos ks``, ``y = V_τ cos ks − V_n sin ks``.
         """
         return (tangential + 1j * normal) * np.exp(1j * self.tangent_angle)
@@ -204,7 +204,7 @@ def law_from_angles(crank: AngleMotion, link: AngleMotion, radius: float, centre
     Parameters
     ----------
     crank : AngleMotion
-        The crank angle ψ (rad, from +x) with ω = ψ_t (rad/s) and ε = ψ_tt (rad/s²).
+        The crank angle ψ (rad, from +x) with ω = ψ_t (1/s) and ε = ψ_tt (1/s²).
     link : AngleMotion
         The driven link's angle θ (rad, from +x, from the crank pin along the link) with θ_t and
         θ_tt, e.g. from a mechanism's solution or from the generic solver.
@@ -292,7 +292,7 @@ def rotation_law(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alpha
     phi : array_like
         Crank angles ψ (rad) (the book's φ; the source writes ψ = ks).
     omega, alpha : float
-        Crank angular velocity ω (rad/s, non-zero) and acceleration ε (rad/s²).
+        Crank angular velocity ω (1/s, non-zero) and acceleration ε (1/s²).
     order : int
         0: φ only; 1: also φ'; 2: also φ''.
     link : str, optional

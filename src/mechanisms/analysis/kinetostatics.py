@@ -2,7 +2,7 @@
 
 For every moving link of a crank-slider or a four-bar the equations of Newton and Euler,
 
-    Σ F = m a_S,        Σ M_S = J_S α      (moments about the centre of mass S),
+    Σ F = m a_S,        Σ M_S = J_S ε      (moments about the centre of mass S),
 
 hold with the joint forces as unknowns. Together with the driving torque on the crank they are
 as many unknowns as there are equations: 8 for the crank-slider (three for the crank, three for
@@ -68,7 +68,7 @@ class _System:
 
     Rows: for each body ``x``, ``y`` (force) and, if it turns, ``m`` (moment about its centre of
     mass). Columns: the unknowns. The equations read ``A u = b`` with
-    ``b = m a_S − Σ known forces`` and ``J_S α − Σ known moments``.
+    ``b = m a_S − Σ known forces`` and ``J_S ε − Σ known moments``.
     """
 
     def __init__(self, solution: Solution, bodies: dict[str, bool], unknowns: int,

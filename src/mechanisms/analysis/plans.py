@@ -247,7 +247,7 @@ class Plan:
         names whose sums are equal (``(("v_B",), ("v_A", "v_BA"))``).
     rates : dict
         Link → angular velocity (velocity plan) or angular acceleration (acceleration plan) read
-        off the plan, rad/s or rad/s², counter-clockwise positive.
+        off the plan, 1/s or 1/s², counter-clockwise positive.
     scale : float
         μ: units (m/s or m/s²) per mm of the drawing.
     positions : dict
@@ -935,7 +935,7 @@ def velocities_from_centre(centre: complex, known_point: complex, known_velocity
     Returns
     -------
     (omega, velocities)
-        ω (rad/s) from ``v_A = iω(A − P)``, i.e. ``ω = |v_A| / |PA|`` with its sense, and
+        ω (1/s) from ``v_A = iω(A − P)``, i.e. ``ω = |v_A| / |PA|`` with its sense, and
         ``{name: iω(X − P)}``: every velocity is perpendicular to the ray from P and
         proportional to the distance from P.
     """

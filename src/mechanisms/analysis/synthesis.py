@@ -1,20 +1,21 @@
-"""Layer 4: synthesis of a four-bar whose output is the coupler, from the time ratio K_v and the
-transmission angle γ in a limit position (Zaitsev and Evgrafov), and its check by simulation.
+"""Layer 4: synthesis of a four-bar whose output is the coupler, from the time ratio K and the
+transmission angle μ₁ in the first limit position (Zaitsev and Evgrafov), and its check by simulation.
 
 The coupler of a four-bar turns back (ψ_t = 0) where crank and rocker are parallel:
-ψ_t = −φ_t L1 sin(φ − ξ)/(L2 sin(ψ − ξ)) vanishes at φ = ξ and at φ = ξ + π. The paper places
+ψ_t = −φ_t L₁ sin(φ − ξ)/(L₂ sin(ψ − ξ)) vanishes at φ = ξ and at φ = ξ + π. The paper places
 the first limit position with the crank along +x (φ = 0) and the rocker pointing along −x
-(ξ = π, antiparallel), the coupler at the angle π − γ, and the second at the crank angle
-φ_x = 2π/(K_v + 1) (the return stroke) with crank and rocker parallel (ξ = φ_x). Its formulas
-(rocker length L3 given):
+(ξ = π, antiparallel), the coupler at the angle π − μ₁, and the second at the crank angle
+φ_x = 2π/(K + 1) (the return stroke) with crank and rocker parallel (ξ = φ_x). Its formulas
+(rocker length L₃ given; the paper writes a, λ, K_v, γ for the book's c, Λ, K, μ₁):
 
-    a = 2 L3 cos(φ_x/2),  λ = cot²(φ_x/2 + γ),  L2 = a(λ + 1) + a√(λ(λ + 1)),
-    L1 = √((2 L2 a − a²)/(2(1 − cos φ_x))),  C = (L3 − L2 cos γ + L1, L2 sin γ).
+    c = 2 L₃ cos(φ_x/2),  Λ = cot²(φ_x/2 + μ₁),  L₂ = c(Λ + 1) + c√(Λ(Λ + 1)),
+    L₁ = √((2 L₂ c − c²)/(2(1 − cos φ_x))),  C = (L₃ − L₂ cos μ₁ + L₁, L₂ sin μ₁).
 
-The two limit positions give one loop-closure equation for the two unknowns L1, L2; the
+The two limit positions give one loop-closure equation for the two unknowns L₁, L₂; the
 paper's formulas pick the member of that one-parameter family in which the coupler in the
-second limit position lies along the chord B1B2 (so that its transmission angle there is
-φ_x/2). Chapter 4 checks every design by simulating it with :class:`~mechanisms.FourBar`.
+second limit position lies along the chord B₀B_x of the rocker's end (so that its transmission
+angle there is φ_x/2). Chapter 4 checks every design by simulating it with
+:class:`~mechanisms.FourBar`.
 """
 
 from __future__ import annotations
@@ -49,15 +50,15 @@ class CouplerOutputDesign:
     Attributes
     ----------
     crank, coupler, rocker : float
-        L1, L2, L3 (m).
+        L₁, L₂, L₃ (m).
     frame : (float, float)
-        Rocker pivot C = (X_C, Y_C) (m).
+        Rocker pivot C = (x_C, y_C) (m).
     time_ratio : float
-        The asked K_v.
+        The asked time ratio K.
     transmission_angle : float
-        The asked γ (rad) in the first limit position.
+        The asked μ₁ (rad), the transmission angle in the first limit position.
     return_angle : float
-        φ_x = 2π/(K_v + 1) (rad).
+        φ_x = 2π/(K + 1) (rad).
     branch : int
         The branch of :class:`~mechanisms.FourBar` on which B is in the designed first
         limit position.
@@ -78,17 +79,17 @@ class CouplerOutputDesign:
 
 
 def return_angle(time_ratio: float) -> float:
-    """Crank angle of the return stroke φ_x = 2π/(K_v + 1) (rad) at constant crank speed."""
+    """Crank angle of the return stroke φ_x = 2π/(K + 1) (rad) at constant crank speed."""
     k = require_finite("time_ratio", time_ratio)
     if k < 1.0:
-        raise InvalidParameterError("time_ratio", time_ratio, "a time ratio K_v ≥ 1")
+        raise InvalidParameterError("time_ratio", time_ratio, "a time ratio K ≥ 1")
     return 2.0 * math.pi / (k + 1.0)
 
 
 def coupler_length_asymptote(time_ratio: float) -> float:
-    """The transmission angle γ (rad) at which the paper's coupler length L2 grows without bound.
+    """The transmission angle μ₁ (rad) at which the paper's coupler length L₂ grows without bound.
 
-    λ = cot²(φ_x/2 + γ) → ∞ where φ_x/2 + γ → π: γ → π − φ_x/2 (the paper's 180° − φ_x/2).
+    Λ = cot²(φ_x/2 + μ₁) → ∞ where φ_x/2 + μ₁ → π: μ₁ → π − φ_x/2 (the paper's 180° − φ_x/2).
     """
     return math.pi - 0.5 * return_angle(time_ratio)
 
@@ -100,34 +101,34 @@ def synthesize_coupler_output(time_ratio: float, transmission_angle: float, rock
     Parameters
     ----------
     time_ratio : float
-        K_v > 1: working stroke over return stroke, in crank angle.
+        The time ratio K > 1: working stroke over return stroke, in crank angle.
     transmission_angle : float
-        γ (rad), 0 < γ < π: the transmission angle in the first limit position.
+        μ₁ (rad), 0 < μ₁ < π: the transmission angle in the first limit position.
     rocker : float
-        L3 (m); every length scales with it.
+        L₃ (m); every length scales with it.
     corrected : bool
-        False: the paper's ``L2 = a(λ + 1) + a√(λ(λ + 1))`` as printed. True: the form
-        ``L2 = a/(1 + cos(φ_x/2 + γ))``, equal to the printed one for π/2 ≤ φ_x/2 + γ < π and
-        right also below π/2, where squaring the cotangent in λ lost its sign (chapter 4).
+        False: the paper's ``L₂ = c(Λ + 1) + c√(Λ(Λ + 1))`` as printed. True: the form
+        ``L₂ = c/(1 + cos(φ_x/2 + μ₁))``, equal to the printed one for π/2 ≤ φ_x/2 + μ₁ < π and
+        right also below π/2, where squaring the cotangent in Λ lost its sign (chapter 4).
 
     Returns
     -------
     CouplerOutputDesign
         The formulas are applied as printed; whether the result is a crank-rocker that reaches
-        K_v and γ is for :func:`check_design` to say.
+        K and μ₁ is for :func:`check_design` to say.
     """
     phi_x = return_angle(time_ratio)
     if not time_ratio > 1.0:
         raise InvalidParameterError("time_ratio", time_ratio,
-                                    "a time ratio K_v > 1 (at K_v = 1 the synthesized crank has no length)")
+                                    "a time ratio K > 1 (at K = 1 the synthesized crank has no length)")
     gamma = require_finite("transmission_angle", transmission_angle)
     if not 0.0 < gamma < math.pi:
-        raise InvalidParameterError("transmission_angle", transmission_angle, "an angle γ in (0, π) rad")
+        raise InvalidParameterError("transmission_angle", transmission_angle, "an angle μ₁ in (0, π) rad")
     l3 = require_length("rocker", rocker)
     a = 2.0 * l3 * math.cos(0.5 * phi_x)
     if abs(0.5 * phi_x + gamma - math.pi) < 1e-9:
         raise InvalidParameterError("transmission_angle", transmission_angle,
-                                    "away from the asymptote γ = π − φ_x/2, where the coupler length is unbounded")
+                                    "away from the asymptote μ₁ = π − φ_x/2, where the coupler length is unbounded")
     if corrected:
         l2 = a / (1.0 + math.cos(0.5 * phi_x + gamma))
     else:
@@ -143,9 +144,9 @@ def synthesize_coupler_output(time_ratio: float, transmission_angle: float, rock
 
 
 def closure_residual(design: CouplerOutputDesign) -> float:
-    """| |B2 − A2| − L2 | (m) in the second limit position, from the geometry alone.
+    """| |B_x − A_x| − L₂ | (m) in the second limit position, from the geometry alone.
 
-    A2 = L1 e^{iφ_x}, B2 = C + L3 e^{iφ_x} (crank and rocker parallel). Zero when the paper's
+    A_x = L₁ e^{iφ_x}, B_x = C + L₃ e^{iφ_x} (crank and rocker parallel). Zero when the paper's
     two limit positions belong to one linkage; an independent check of its formulas.
     """
     e = complex(math.cos(design.return_angle), math.sin(design.return_angle))
@@ -169,7 +170,7 @@ class DesignCheck:
     limit_angles : ndarray
         Crank angles (rad) where the coupler turns back (ψ_t = 0), found by simulation.
     time_ratio : float
-        K_v reached (nan if the crank does not rotate).
+        The time ratio K reached (nan if the crank does not rotate).
     first_angle, second_angle : float
         Transmission angles μ (rad) in the two limit positions (the one nearer φ = 0 first).
     minimum_angle : float
@@ -236,10 +237,10 @@ def check_design(design: CouplerOutputDesign, positions: int = 3600) -> DesignCh
 
 
 def largest_rotatable_angle(time_ratio: float, rocker: float = 1.0, tolerance: float = 1e-10) -> float:
-    """The largest γ (rad) for which the design (corrected formula) still has a fully rotating crank.
+    """The largest μ₁ (rad) for which the design (corrected formula) still has a fully rotating crank.
 
-    Bisection on γ in (0, π − φ_x/2) on the Grashof condition of the synthesized lengths: small
-    γ gives a crank-rocker, γ near the asymptote a linkage whose crank cannot turn (the rocker is
+    Bisection on μ₁ in (0, π − φ_x/2) on the Grashof condition of the synthesized lengths: small
+    μ₁ gives a crank-rocker, μ₁ near the asymptote a linkage whose crank cannot turn (the rocker is
     then the shortest link). The boundary is a change-point linkage.
     """
     lo, hi = 1e-3, coupler_length_asymptote(time_ratio) - 1e-9
@@ -251,8 +252,8 @@ def largest_rotatable_angle(time_ratio: float, rocker: float = 1.0, tolerance: f
 
     if not rotates(lo):
         raise InvalidParameterError("time_ratio", time_ratio,
-                                    "a time ratio whose designs at small γ have a fully rotating crank (below "
-                                    "K_v ≈ 1.001 the crank is too short against the tolerance of Grashof's test)")
+                                    "a time ratio whose designs at small μ₁ have a fully rotating crank (below "
+                                    "K ≈ 1.001 the crank is too short against the tolerance of Grashof's test)")
     while hi - lo > tolerance:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if rotates(mid) else (lo, mid)

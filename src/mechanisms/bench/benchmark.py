@@ -75,7 +75,7 @@ REFERENCE_SAMPLE = 100_000
 LOOP_LIMIT = 100_000
 """pylinkage's Python loop ``step()`` is timed on at most this many positions (it takes ~10 µs each)."""
 OMEGA = 1.0
-"""Crank speed φ_t (rad/s) of every run: velocities in rad/s are then derivatives in φ."""
+"""Crank speed φ_t (1/s) of every run: velocities in 1/s are then derivatives in φ."""
 
 
 def benchmark_mechanisms() -> dict[str, Mechanism]:
@@ -110,9 +110,9 @@ class Reference(NamedTuple):
     q: np.ndarray
     """Positions q (rad or m)."""
     q_t: np.ndarray
-    """Velocities q_t (rad/s or m/s)."""
+    """Velocities q_t (1/s or m/s)."""
     q_tt: np.ndarray
-    """Accelerations q_tt (rad/s² or m/s²)."""
+    """Accelerations q_tt (1/s² or m/s²)."""
 
 
 def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha: float = 0.0,
@@ -126,7 +126,7 @@ def reference(mechanism: Mechanism, phi: ArrayLike, omega: float = OMEGA, alpha:
     phi : array_like
         Crank angles φ (rad), taken as exact (double or extended precision).
     omega, alpha : float
-        Crank speed φ_t (rad/s) and acceleration φ_tt (rad/s²).
+        Crank speed φ_t (1/s) and acceleration φ_tt (1/s²).
     iterations : int
         Newton iterations in ``numpy.longdouble`` from the double-precision closed form.
 
@@ -443,7 +443,7 @@ def run(sizes: Iterable[int] = DEFAULT_SIZES, repeat: int = 3, mechanisms: Itera
     dict
         ``{"results": [...], "date", "machine", "reference", "notes"}``; each result has the keys
         of :data:`RESULT_KEYS` (``parameter``: Newton's tolerance, the difference step h in rad, or
-        the floor's bytes; ``max_error``: rad, m and their time derivatives at ω = 1 rad/s, or
+        the floor's bytes; ``max_error``: rad, m and their time derivatives at ω = 1 1/s, or
         ``None`` for the floor).
     """
     table = benchmark_mechanisms()
@@ -563,7 +563,7 @@ def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> d
     """Errors of central differences of the closed-form positions against the step h (rad).
 
     Returns ``{"velocities": …, "accelerations": …}``, the largest error over ``n`` positions for each
-    step (rad/s, m/s … and per second squared, at ω = 1 rad/s).
+    step (1/s, m/s … and per second squared, at ω = 1 1/s).
     """
     phi = np.arange(n) * (2.0 * math.pi / n)
     ref = reference(mechanism, phi)

@@ -50,8 +50,8 @@ class SliderOnLine:
     point : PointMotion
         The slider joint B ``x + iy`` (m) with its velocity (m/s) and acceleration (m/s²).
     rod_angle : AngleMotion
-        The angle of the rod, the vector from the joint J to B (rad), with ω (rad/s) and
-        α (rad/s²); for the crank-slider this is the coupler angle ψ.
+        The angle of the rod, the vector from the joint J to B (rad), with ω (1/s) and
+        ε (1/s²); for the crank-slider this is the coupler angle ψ.
     travel : Motion
         The signed position s of B along the guide (m), measured from the guide's point
         ``through`` in the guide's direction, with ``s_t`` (m/s) and ``s_tt`` (m/s²).

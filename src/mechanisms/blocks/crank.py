@@ -20,10 +20,10 @@ def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order:
     phi : array_like
         Crank angles φ (rad), counter-clockwise from +x: finite real numbers, |φ| ≤ 2^52 rad.
     omega : float or array_like
-        Angular velocity φ_t (rad/s) at each position: one number or one per crank angle (an array
-        that broadcasts to the shape of ``phi``), each finite, |ω| ≤ 1e50 rad/s.
+        Angular velocity φ_t (1/s) at each position: one number or one per crank angle (an array
+        that broadcasts to the shape of ``phi``), each finite, |ω| ≤ 1e50 1/s.
     alpha : float or array_like
-        Angular acceleration φ_tt (rad/s²) at each position, likewise; |α| ≤ 1e100 rad/s².
+        Angular acceleration φ_tt (1/s²) at each position, likewise; |α| ≤ 1e100 1/s².
     order : int
         0, 1 or 2: how many time derivatives to keep.
 
@@ -35,12 +35,12 @@ def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order:
 
     Notes
     -----
-    A constant ω or α is kept as a read-only view of one number
+    A constant ω or ε is kept as a read-only view of one number
     (:func:`~mechanisms.motion.constant`), which takes no memory.
     """
     order = require_order(order)
     phi = require_angles("phi", phi)
-    rates = (("omega", omega, OMEGA_MAX, "rad/s"), ("alpha", alpha, ALPHA_MAX, "rad/s²"))
+    rates = (("omega", omega, OMEGA_MAX, "1/s"), ("alpha", alpha, ALPHA_MAX, "1/s²"))
     checked = [require_rates(name, value, phi.shape, high, unit) for name, value, high, unit in rates]
     if order == 0:
         return AngleMotion(phi)

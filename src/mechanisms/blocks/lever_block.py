@@ -49,7 +49,7 @@ class LeverBlock:
     ----------
     lever_angle : AngleMotion
         The lever's angle ξ (rad), the direction from the pivot C to the block, with ω₃ = ξ_t
-        (rad/s) and ε₃ = ξ_tt (rad/s²).
+        (1/s) and ε₃ = ξ_tt (1/s²).
     distance : Motion
         The distance L from the pivot to the block along the lever (m, the lecture's L_tek), with the sliding
         velocity ``L_t`` (m/s) and the relative acceleration ``L_tt`` (m/s²). Positive, except in
@@ -136,9 +136,9 @@ def lever_through_pivot(crank: AngleMotion, radius: float, pivot_angle: float) -
     crank : AngleMotion
         The crank angle φ with ω₁ = φ_t and ε₁ = φ_tt.
     radius : float
-        The crank radius r (m), equal to the pivot's distance from the crank's centre O.
+        The crank length L₁ (m), equal to the pivot's distance from the crank's centre O.
     pivot_angle : float
-        The direction γ of the pivot C seen from O (rad): ``C = r exp(iγ)``.
+        The direction θ_OC of the pivot C seen from O (rad): ``C = L₁ exp(iθ_OC)``.
 
     Returns
     -------
@@ -149,16 +149,17 @@ def lever_through_pivot(crank: AngleMotion, radius: float, pivot_angle: float) -
 
     Notes
     -----
-    ``A − C = r(exp(iφ) − exp(iγ)) = 2r sin((φ − γ)/2) · exp(i((φ + γ)/2 + π/2))``, so
+    ``A − C = L₁(exp(iφ) − exp(iθ_OC)) = 2L₁ sin((φ − θ_OC)/2) · exp(i((φ + θ_OC)/2 + π/2))``, so
 
-    * ``ξ = (φ + γ)/2 + π/2``, ``ξ_t = ω₁/2``, ``ξ_tt = ε₁/2`` (the inscribed-angle theorem:
+    * ``ξ = (φ + θ_OC)/2 + π/2``, ``ξ_t = ω₁/2``, ``ξ_tt = ε₁/2`` (the inscribed-angle theorem:
       the lever turns at half the crank's speed, whatever the position);
-    * ``s = 2r sin((φ − γ)/2)``, ``s_t = r ω₁ cos((φ − γ)/2)``,
-      ``s_tt = r ε₁ cos((φ − γ)/2) − (r ω₁²/2) sin((φ − γ)/2)``.
+    * ``s = 2L₁ sin((φ − θ_OC)/2)``, ``s_t = L₁ ω₁ cos((φ − θ_OC)/2)``,
+      ``s_tt = L₁ ε₁ cos((φ − θ_OC)/2) − (L₁ ω₁²/2) sin((φ − θ_OC)/2)``.
 
-    At φ = γ (mod 2π) the block is at the pivot: s = 0 but ``s_t = ±r ω₁`` and ω₃ = ω₁/2 are finite.
+    At φ = θ_OC (mod 2π) the block is at the pivot: s = 0 but ``s_t = ±L₁ ω₁`` and ω₃ = ω₁/2 are
+    finite.
     What is not defined there is the *unsigned* description of the general block: the direction
-    from C to A jumps by π, ``|s|`` has a corner (its derivative jumps from −rω₁ to +rω₁) and the
+    from C to A jumps by π, ``|s|`` has a corner (its derivative jumps from −L₁ω₁ to +L₁ω₁) and the
     constraint Jacobian is singular, so neither the general formulas nor Newton's method apply.
     """
     radius = require_length("radius", radius)

@@ -61,7 +61,7 @@ def harmonic(mean: float, amplitude: float, frequency: float, t: ArrayLike, phas
     mean, amplitude : float
         Mean value and amplitude (rad for an angle, m for a displacement).
     frequency : float
-        Circular frequency (rad/s).
+        Circular frequency (1/s).
     t : array_like
         Times (s).
 

@@ -5,7 +5,7 @@ crank positions. Angles and lengths are real arrays; points are complex arrays `
 so the plane-motion formulas of the lecture read as in the book (chapter 1):
 
 * Euler form (pole P, link angle θ):
-  ``v = v_P + iω(r − r_P)``, ``a = a_P + (iα − ω²)(r − r_P)``;
+  ``v = v_P + iω(r − r_P)``, ``a = a_P + (iε − ω²)(r − r_P)``;
 * Lagrange form: the point's coordinates (α, β) in the reference position, turned by Δθ
   about the moving pole.
 
@@ -55,9 +55,9 @@ class Motion:
     value : ndarray
         Real (angle in rad, length in m) or complex (point ``x + iy`` in m).
     velocity : ndarray or None
-        First time derivative (rad/s or m/s), ``None`` if not computed.
+        First time derivative (1/s or m/s), ``None`` if not computed.
     acceleration : ndarray or None
-        Second time derivative (rad/s² or m/s²), ``None`` if not computed.
+        Second time derivative (1/s² or m/s²), ``None`` if not computed.
     """
 
     value: Any
@@ -73,7 +73,7 @@ class Motion:
 
     @property
     def d1(self) -> np.ndarray:
-        """The first time derivative as an array (rad/s or m/s: φ_t of an angle φ): :attr:`velocity`, never ``None``.
+        """The first time derivative as an array (1/s or m/s: φ_t of an angle φ): :attr:`velocity`, never ``None``.
 
         Raises
         ------
@@ -86,7 +86,7 @@ class Motion:
 
     @property
     def d2(self) -> np.ndarray:
-        """The second time derivative as an array (rad/s² or m/s²: φ_tt): :attr:`acceleration`, never ``None``.
+        """The second time derivative as an array (1/s² or m/s²: φ_tt): :attr:`acceleration`, never ``None``.
 
         Raises
         ------
@@ -140,7 +140,7 @@ class Motion:
 
 
 class AngleMotion(Motion):
-    """The angle of a link (rad) with its angular velocity ω (rad/s) and acceleration α (rad/s²).
+    """The angle of a link (rad) with its angular velocity ω (1/s) and acceleration ε (1/s²).
 
     The angle is measured counter-clockwise from +x; in the book's notation φ (crank),
     ψ (coupler), ξ (rocker or lever), and ``φ_t, φ_tt`` their time derivatives.
@@ -153,12 +153,12 @@ class AngleMotion(Motion):
 
     @property
     def omega(self) -> Derivative:
-        """Angular velocity ω (rad/s), counter-clockwise positive; ``None`` if not computed (see :attr:`d1`)."""
+        """Angular velocity ω (1/s), counter-clockwise positive; ``None`` if not computed (see :attr:`d1`)."""
         return self.velocity
 
     @property
     def alpha(self) -> Derivative:
-        """Angular acceleration α (rad/s²); ``None`` if not computed (see :attr:`d2`)."""
+        """Angular acceleration ε (1/s²); ``None`` if not computed (see :attr:`d2`)."""
         return self.acceleration
 
     def unit(self) -> np.ndarray:
@@ -227,14 +227,14 @@ def plane_motion(pole: PointMotion, angle: AngleMotion, position: np.ndarray) ->
     pole : PointMotion
         A point P of the link whose motion is known (m, m/s, m/s²).
     angle : AngleMotion
-        The link's angle θ with ω = θ_t and α = θ_tt.
+        The link's angle θ with ω = θ_t and ε = θ_tt.
     position : ndarray of complex
         The point's current position r (m).
 
     Returns
     -------
     PointMotion
-        ``r``, ``v = v_P + iω(r − r_P)``, ``a = a_P + (iα − ω²)(r − r_P)``, up to the lower
+        ``r``, ``v = v_P + iω(r − r_P)``, ``a = a_P + (iε − ω²)(r − r_P)``, up to the lower
         of the orders of ``pole`` and ``angle``.
 
     Notes

@@ -53,12 +53,12 @@ ANGLE_MAX = 2.0**52
 than a radian apart."""
 
 OMEGA_MAX = 1e50
-"""The largest |ω| = |φ_t| of the crank (rad/s): accelerations ω²·L then stay in range for every length
+"""The largest |ω| = |φ_t| of the crank (1/s): accelerations ω²·L then stay in range for every length
 between :data:`LENGTH_MIN` and :data:`LENGTH_MAX`, the growth near singular positions included. (A very small ω
 is accepted; accelerations below about 1e-300 m/s² then lose relative accuracy to underflow.)"""
 
 ALPHA_MAX = 1e100
-"""The largest |α| = |φ_tt| of the crank (rad/s²)."""
+"""The largest |α| = |φ_tt| of the crank (1/s²)."""
 
 
 def _is_real_scalar(value: object) -> bool:
@@ -143,7 +143,7 @@ def require_angles(name: str, values: ArrayLike) -> np.ndarray:
 
 
 def require_rates(name: str, values: ArrayLike, shape: tuple[int, ...], high: float, unit: str) -> np.ndarray:
-    """A crank rate (ω or α): one number or an array that broadcasts to ``shape`` (the crank angles'),
+    """A crank rate (φ_t or φ_tt): one number or an array that broadcasts to ``shape`` (the crank angles'),
     each finite and of magnitude at most ``high`` (``unit``), as an array of floats; or raise naming it."""
     array = require_finite_array(name, values, unit)
     try:

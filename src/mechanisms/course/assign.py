@@ -76,7 +76,7 @@ class Variant:
         The student's id (``"s01"``).
     mechanism : Mechanism
     omega : float
-        Constant crank angular velocity φ_t (rad/s), counter-clockwise.
+        Constant crank angular velocity φ_t (1/s), counter-clockwise.
     positions_deg : tuple of float
         Crank angles φ (degrees) at which the quantities are asked for.
     """

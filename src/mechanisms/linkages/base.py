@@ -93,7 +93,7 @@ class Solution:
         return table[name]
 
     def angle(self, link: str) -> AngleMotion:
-        """The angle of a link (rad) with ω (rad/s) and α (rad/s²).
+        """The angle of a link (rad) with ω (1/s) and ε (1/s²) (attributes ``omega``, ``alpha``).
 
         Raises
         ------
@@ -281,9 +281,9 @@ class Mechanism(ABC):
         phi : array_like
             Crank angles φ (rad).
         omega : float or array_like
-            Crank angular velocity φ_t (rad/s).
+            Crank angular velocity φ_t (1/s).
         alpha : float or array_like
-            Crank angular acceleration φ_tt (rad/s²).
+            Crank angular acceleration φ_tt (1/s²).
         order : int
             0 positions only, 1 up to velocities, 2 up to accelerations.
 

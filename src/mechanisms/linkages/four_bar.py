@@ -124,12 +124,12 @@ def cramer_rates(phi: ArrayLike, psi: ArrayLike, xi: ArrayLike, crank: float, co
     crank, coupler, rocker : float
         L1, L2, L3 (m).
     omega, alpha : float or array_like
-        φ_t (rad/s) and φ_tt (rad/s²).
+        φ_t (1/s) and φ_tt (1/s²).
 
     Returns
     -------
     (psi_t, xi_t, psi_tt, xi_tt) : tuple of ndarray
-        rad/s and rad/s².
+        1/s and 1/s².
 
     Notes
     -----
@@ -174,14 +174,14 @@ def assembly_intervals(crank: float, coupler: float, rocker: float,
     Returns
     -------
     list of (start, stop)
-        ``[(θ0 − π, θ0 + π)]`` for a fully rotating crank (θ0 = direction of OC); one or two
+        ``[(θ_OC − π, θ_OC + π)]`` for a fully rotating crank (θ_OC = direction of OC); one or two
         intervals (start < stop) otherwise; empty if it never assembles.
 
     Notes
     -----
     The coupler and rocker close the loop when ``|L2 − L3| ≤ |AC| ≤ L2 + L3``. |AC| grows with
-    the angle β = |φ − θ0| ∈ [0, π] between OA and OC, so the conditions are
-    ``β ≥ β_min`` (|AC| = |L2 − L3|) and ``β ≤ β_max`` (|AC| = L2 + L3), chapter 4.
+    the angle |φ − θ_OC| ∈ [0, π] between OA and OC, so the conditions bound that angle from below
+    (where |AC| = |L2 − L3|) and from above (where |AC| = L2 + L3), chapter 4.
     """
     # scale-free: lengths divided by a power of two (exact), so that no square overflows or underflows
     _, exponent = math.frexp(max(crank, coupler, rocker, abs(frame[0]), abs(frame[1])))
@@ -206,11 +206,11 @@ def assembly_intervals(crank: float, coupler: float, rocker: float,
 
 def change_point_angles(crank: float, coupler: float, rocker: float,
                         frame: tuple[float, float]) -> tuple[float, ...]:
-    """Crank angles (rad, in [θ0, θ0 + 2π)) at which the crank passes a change point.
+    """Crank angles (rad, in [θ_OC, θ_OC + 2π)) at which the crank passes a change point.
 
     At a change point all four joints are in line, the two branches meet and the crank can
-    pass on. It happens at φ = θ0 (A on the segment towards C) when |d − L1| = |L2 − L3|, and
-    at φ = θ0 + π when d + L1 = L2 + L3 (d = |OC|, θ0 its direction); there |AC| passes its
+    pass on. It happens at φ = θ_OC (A on the segment towards C) when |d − L1| = |L2 − L3|, and
+    at φ = θ_OC + π when d + L1 = L2 + L3 (d = |OC|, θ_OC its direction); there |AC| passes its
     extreme, so the two branches touch without the crank having to turn back.
 
     The equalities are decided exactly for the given doubles (d² = a² + b² in rational arithmetic,
@@ -232,12 +232,12 @@ def change_point_angles(crank: float, coupler: float, rocker: float,
 def _sides(phi: np.ndarray, branch: int, theta0: float, flips: Sequence[float]) -> np.ndarray | int:
     """The geometric side of B at each crank angle for a linkage that keeps its assembly mode.
 
-    ``branch`` holds for φ − θ0 in (0, π); each change point passed between there and φ
+    ``branch`` holds for φ − θ_OC in (0, π); each change point passed between there and φ
     (counted on the unwrapped crank angle) changes the side.
     """
     if not flips:
         return branch
-    u = (phi - theta0) / math.pi      # change points at even u (φ = θ0) and odd u (φ = θ0 + π)
+    u = (phi - theta0) / math.pi      # change points at even u (φ = θ_OC) and odd u (φ = θ_OC + π)
     count = np.zeros(np.shape(phi), dtype=int)
     for flip in flips:
         offset = 0.0 if math.isclose(flip, theta0) else 1.0

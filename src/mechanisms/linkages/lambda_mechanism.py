@@ -40,7 +40,7 @@ class LambdaMechanism(Mechanism):
     Notes
     -----
     Joints O, A, C, B, D; links ``crank`` (O→A, angle φ), ``coupler`` (A→B, angle ψ of the
-    chapter; the source measures γ = π − ψ from −x) and ``rocker`` (D→C, angle ε). It is the
+    chapter; the source measures γ = π − ψ from −x) and ``rocker`` (D→C, angle ξ). It is the
     four-bar O-A-C-D of chapter 4 with B = A + 2(C − A), so the four-bar's continuation rule
     holds at a change point (d + r = 2b).
     """

@@ -268,7 +268,7 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
     angle_symbol : str
         The crank angle's symbol in the readout.
     omega : float
-        Crank speed φ_t (rad/s) of the velocities and accelerations (1 unless the page says otherwise).
+        Crank speed φ_t (1/s) of the velocities and accelerations (1 unless the page says otherwise).
     labels : bool or mapping
         Write the joints' names; a mapping ``{package name: label}`` writes some under the page's own
         letters (``{"L": "E", "O1": "C"}``), the others under the package's.

@@ -32,7 +32,7 @@ def derivative_errors(mechanism: Mechanism, phi: ArrayLike, omega: float, step: 
     """Largest difference between exact derivatives and numerical differentiation.
 
     For every link angle and joint of the mechanism at constant crank speed ω, returns
-    ``{name: (velocity error, acceleration error)}`` in rad/s, rad/s² or m/s, m/s².
+    ``{name: (velocity error, acceleration error)}`` in 1/s, 1/s² or m/s, m/s².
     """
     phi = np.asarray(phi, dtype=float)
     exact = mechanism.solve(phi, omega, 0.0, order=2)

@@ -23,7 +23,7 @@ def central_difference(function: Callable[[np.ndarray], np.ndarray], phi: ArrayL
     phi : array_like
         Crank angles (rad).
     omega : float
-        Constant crank speed φ_t (rad/s).
+        Constant crank speed φ_t (1/s).
     step : float
         Step h in the crank angle (rad).
     derivative : int

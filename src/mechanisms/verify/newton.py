@@ -259,7 +259,7 @@ def solve_constraints(constraints: Constraints, guess: ArrayLike, phi: ArrayLike
     phi : array_like, shape (n,)
         Crank angles φ (rad).
     omega, alpha : float or array_like
-        Crank angular velocity φ_t (rad/s) and acceleration φ_tt (rad/s²).
+        Crank angular velocity φ_t (1/s) and acceleration φ_tt (1/s²).
     order : int
         0, 1 or 2.
     tol : float
