@@ -159,13 +159,13 @@ class TimeRatio:
     Attributes
     ----------
     ratio : float
-        K = (slow stroke angle)/(fast stroke angle) = (π + θ)/(π − θ) ≥ 1.
+        K = (slow stroke angle)/(fast stroke angle) = (π + θ_K)/(π − θ_K) ≥ 1.
     outward_angle : float
         Crank angle (rad) turned while the slider moves from the inner to the outer dead centre.
     return_angle : float
         Crank angle (rad) turned while it moves back; the two add up to 2π.
     overlap_angle : float
-        θ = |outward − π| (rad), the crank angle between the two dead-centre positions' extensions.
+        θ_K = |outward − π| (rad), the crank angle between the two dead-centre positions' extensions.
     """
 
     ratio: float
@@ -181,7 +181,7 @@ def time_ratio(mechanism: CrankSlider, direction: int = 1) -> TimeRatio:
     -----
     The strokes take the crank angles between the dead centres: counter-clockwise from φ_inner to
     φ_outer for the outward stroke. For the axial mechanism both are π and K = 1; an offset makes one
-    stroke slower, ``θ = arcsin(e/(L2 − L1)) − arcsin(e/(L1 + L2))`` for branch +1 (computed here from
+    stroke slower, ``θ_K = arcsin(e/(L2 − L1)) − arcsin(e/(L1 + L2))`` for branch +1 (computed here from
     the dead-centre angles by atan2).
     """
     if direction not in (1, -1):

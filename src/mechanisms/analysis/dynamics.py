@@ -296,8 +296,11 @@ def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> flo
     Notes
     -----
     From ``ΔE = J (ω_max² − ω_min²)/2 = J ω_m² δ`` for a constant J: the classical estimate
-    (chapter 7). It includes the mean reduced inertia of the mechanism itself, which is
-    subtracted to size the flywheel; the variable part of J_red is neglected.
+    (chapter 7). The result J_tot includes the mean reduced inertia of the mechanism itself, which
+    is subtracted to size the flywheel. The variable part of J_red enters through ``swing``: pass the
+    swing of the excess work with the torque ½ J_red′ ω_m² included (:func:`energy_swing` of
+    ``M_d − M_c − ½ J_red′ ω_m²``), as chapter 7 does; left out, δ comes out markedly larger than
+    asked (chapter 7, §7.11).
     """
     swing = require_non_negative("swing", swing, "J")
     mean_speed = require_positive("mean_speed", mean_speed, "1/s")

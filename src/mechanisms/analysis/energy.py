@@ -81,7 +81,7 @@ class LinkMass:
     Notes
     -----
     The moment of inertia about the first joint follows from Steiner's (parallel-axis) theorem,
-    ``J_O = J_S + m (along² + left²)`` (chapter 7).
+    ``J_P = J_S + m (along² + left²)`` (chapter 7; J_O for the crank).
     """
 
     mass: float
@@ -443,9 +443,9 @@ def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass],
 
 
 def reduced_torque(mechanism: Mechanism, loads: Sequence[Force | Torque], phi: ArrayLike) -> np.ndarray:
-    """The reduced torque of applied loads at the crank, Q(φ) = P/φ_t (N·m).
+    """The reduced torque of the applied loads at the crank, M_red(φ) = P_loads/φ_t (N·m).
 
-    The generalized force of the loads: their power at φ_t = 1. The loads are evaluated on the
+    Their power at φ_t = 1 (the loads' part of the generalized force Q_φ = M_d − M_c, chapter 7). The loads are evaluated on the
     solution at φ_t = 1, φ_tt = 0, so a load may depend on the position and on the direction of
     motion for a crank turning counter-clockwise.
     """

@@ -182,7 +182,7 @@ def transmission_extremes(mechanism: FourBar) -> tuple[float, float]:
     Notes
     -----
     By the cosine law in triangle ABC, ``|AC|² = L2² + L3² − 2 L2 L3 cos μ``: μ grows with |AC|,
-    which is extreme at φ = θ0 (|AC| = |d − L1|) and φ = θ0 + π (|AC| = d + L1), or at the limits
+    which is extreme at φ = θ_OC (|AC| = |d − L1|) and φ = θ_OC + π (|AC| = d + L1), or at the limits
     of the crank range of a non-rotating crank (μ = 0 or π). Half-angle form:
     ``tan²(μ/2) = (|AC|² − (L2 − L3)²)/((L2 + L3)² − |AC|²)``.
     """

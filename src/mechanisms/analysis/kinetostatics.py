@@ -198,7 +198,7 @@ def joint_forces(mechanism: Mechanism, solution: Solution, masses: Mapping[str, 
 
     Notes
     -----
-    Unknowns, crank-slider: R_O, R_A, R_B (two components each), the guide's normal force N and
+    Unknowns, crank-slider: R_O, R_A, R_B (two components each), the guide's normal force N_B and
     the driving torque M_d; equations: crank (3), coupler (3), slider (2). The slider translates,
     so its moment equation only fixes the guide's moment, which does no work and is not sought.
     Four-bar: R_O, R_A, R_B, R_C and M_d against three equations for each of its three links.

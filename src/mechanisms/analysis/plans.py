@@ -21,7 +21,7 @@ crank-slider; :func:`velocities_from_centre` gives the velocities of a link's po
 instant centre.
 
 Points are complex numbers ``x + iy`` (m), velocities m/s, accelerations m/s². The plan's
-vertices are stored in those units; the drawing divides them by the scale μ (units per mm).
+vertices are stored in those units; the drawing divides them by the scale (μ_v or μ_a, units per mm).
 """
 
 from __future__ import annotations
@@ -141,7 +141,7 @@ def image(first_image: complex, second_image: complex, first: complex, second: c
 
 
 def nice_scale(largest: float, length_mm: float = 100.0) -> float:
-    """The smallest scale μ = m·10ᵏ (m in 1, 2, 2.5, 4, 5) that draws ``largest`` no longer than ``length_mm``.
+    """The smallest scale (μ_v or μ_a) m·10ᵏ (m in 1, 2, 2.5, 4, 5) that draws ``largest`` no longer than ``length_mm``.
 
     Parameters
     ----------
@@ -153,7 +153,7 @@ def nice_scale(largest: float, length_mm: float = 100.0) -> float:
     Returns
     -------
     float
-        μ in units per mm, e.g. 0.2 (m/s)/mm.
+        The scale in units per mm, e.g. μ_a = 0.2 (m/s²)/mm.
     """
     if not largest > 0.0 or not math.isfinite(largest):
         raise InvalidParameterError("largest", largest, "a finite magnitude > 0 of the longest vector")
@@ -219,7 +219,7 @@ class Reading(NamedTuple):
     """A vector read off a plan: what a ruler and a protractor give (:meth:`Plan.read`)."""
 
     magnitude: float
-    """Its drawn length times the scale μ (m/s or m/s²)."""
+    """Its drawn length times the scale μ_v or μ_a (m/s or m/s²)."""
     direction_deg: float
     """Its direction in degrees, counter-clockwise from +x, in [0, 360)."""
 
@@ -249,7 +249,7 @@ class Plan:
         Link → angular velocity (velocity plan) or angular acceleration (acceleration plan) read
         off the plan, 1/s or 1/s², counter-clockwise positive.
     scale : float
-        μ: units (m/s or m/s²) per mm of the drawing.
+        μ_v or μ_a: units (m/s or m/s²) per mm of the drawing.
     positions : dict
         The mechanism's points used (m), for the similarity of images.
     images : dict
@@ -368,9 +368,9 @@ class Plan:
     def similarity(self, link: str) -> float:
         """How far the image of a link is from similar to the link (0 for an exact image).
 
-        For a rigid link every image vector is the link vector it images times one complex number ρ,
-        ``x − a = ρ(X − A)``, with ρ = (b − a)/(B − A) from the link's two joints. The result is the
-        largest ``|x − a − ρ(X − A)|`` over the link's points, relative to ``|ρ|`` times the link's size.
+        For a rigid link every image vector is the link vector it images times one complex number κ,
+        ``x − a = κ(X − A)``, with κ = (b − a)/(B − A) from the link's two joints. The result is the
+        largest ``|x − a − κ(X − A)|`` over the link's points, relative to ``|κ|`` times the link's size.
         """
         names = self.images[link]
         first, second = names[0], names[1]

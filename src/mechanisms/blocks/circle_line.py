@@ -5,17 +5,17 @@ shaper (chapter 5) and every "link ending in a slider" of the lecture are this b
 J moves, the rod J→B has a fixed length, and B is held on a fixed line. B is where the circle of
 radius ``rod`` about J meets the line; of the two intersections, ``branch`` picks one.
 
-Geometry, in the guide's own frame (unit vector ``e = exp(iδ)`` along the guide, ``i·e`` to its
+Geometry, in the guide's own frame (unit vector ``e = exp(iβ)`` along the guide, β its direction, ``i·e`` to its
 left, origin at the point ``P`` the guide passes through)::
 
-    u = Re(ē (J − P))         position of the foot of the perpendicular from J
-    h = Im(ē (J − P))         signed distance of J from the guide (left positive)
-    w = √((rod − h)(rod + h)) half-chord: distance from the foot to B
-    s = u + branch · w        position of B along the guide
-    B = P + s e
+    u   = Re(ē (J − P))           position of the foot of the perpendicular from J
+    h_J = Im(ē (J − P))           signed distance of J from the guide (left positive; h_A of ch. 3)
+    c_B = √((rod − h_J)(rod + h_J)) half-chord: distance from the foot to B
+    s   = u + σ · c_B              position of B along the guide (σ = ``branch``)
+    B   = P + s e
 
-The product ``(rod − h)(rod + h)`` instead of ``rod² − h²`` keeps full relative accuracy when
-|h| is close to ``rod`` (no cancellation of two large squares).
+The product ``(rod − h_J)(rod + h_J)`` instead of ``rod² − h_J²`` keeps full relative accuracy when
+|h_J| is close to ``rod`` (no cancellation of two large squares).
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ __all__ = ["SliderOnLine", "slider_on_line"]
 # a few units of round-off in h, e.g. from sin(φ) at a crank angle that is exactly a singular position.
 _REACH_TOLERANCE = 8.0 * np.finfo(float).eps
 _SINGULAR_FACTOR = 100.0
-"""w² below this many times its round-off is a singular position (w ≲ 6e-7·rod for unit sizes)."""
+"""c_B² below this many times its round-off is a singular position (c_B ≲ 6e-7·rod for unit sizes)."""
 _STILL_FACTOR = 64.0 * np.finfo(float).eps
 """At a singular position, a velocity of J across the guide below this fraction of J's speed is zero
 to round-off: J then moves along the guide and the rates are 0/0, undetermined (``nan``), not unbounded."""
@@ -56,7 +56,7 @@ class SliderOnLine:
         The signed position s of B along the guide (m), measured from the guide's point
         ``through`` in the guide's direction, with ``s_t`` (m/s) and ``s_tt`` (m/s²).
     singular : ndarray of bool
-        True where the rod is perpendicular to the guide (|h| = rod): B's velocity along the
+        True where the rod is perpendicular to the guide (|h_J| = rod): B's velocity along the
         guide is unbounded there, and the derivatives are ``inf`` or ``nan`` on purpose.
     """
 
@@ -80,7 +80,7 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     through : complex
         A point of the guide ``x + iy`` (m); the slider's travel s is measured from it.
     direction : float
-        The guide's direction δ (rad), counter-clockwise from +x; s grows in this direction.
+        The guide's direction β (rad), counter-clockwise from +x; s grows in this direction.
     branch : int
         +1: B lies ahead of the foot of the perpendicular from J (in the guide's direction);
         −1: behind it. For the crank-slider with the guide along +x, +1 puts the slider on the
@@ -101,26 +101,27 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
         If ``rod`` is not a finite length > 0, ``through`` or ``direction`` is not finite, or
         ``branch`` is not ±1.
     AssemblyError
-        Where J is farther from the guide than the rod is long (|h| > rod): the rod cannot reach it.
+        Where J is farther from the guide than the rod is long (|h_J| > rod): the rod cannot reach it.
 
     Notes
     -----
-    With the guide frame of the module docstring and ``w = √((rod − h)(rod + h))``:
+    With the guide frame of the module docstring, ``c_B = √((rod − h_J)(rod + h_J))`` and σ the
+    branch:
 
-    * positions: ``s = u + b·w``, ``B = P + s·e``, rod angle ``θ = δ + atan2(−h, b·w)``;
-    * velocities: ``u_t = Re(ē J_t)``, ``h_t = Im(ē J_t)``, ``w_t = −h h_t / w``,
-      ``s_t = u_t + b·w_t``, ``θ_t = −b·h_t / w``;
-    * accelerations: ``w_tt = −(h_t² + h h_tt + w_t²) / w``, ``s_tt = u_tt + b·w_tt``,
-      ``θ_tt = −(b·h_tt + θ_t w_t) / w``,
+    * positions: ``s = u + σ·c_B``, ``B = P + s·e``, rod angle ``ψ = β + atan2(−h_J, σ·c_B)``;
+    * velocities: ``u_t = Re(ē J_t)``, ``h_J,t = Im(ē J_t)``, ``c_B,t = −h_J h_J,t / c_B``,
+      ``s_t = u_t + σ·c_B,t``, ``ψ_t = −σ·h_J,t / c_B``;
+    * accelerations: ``c_B,tt = −(h_J,t² + h_J h_J,tt + c_B,t²) / c_B``, ``s_tt = u_tt + σ·c_B,tt``,
+      ``ψ_tt = −(σ·h_J,tt + ψ_t c_B,t) / c_B``,
 
-    from differentiating ``w² + h² = rod²`` and ``rod·sin(θ − δ) = −h`` (chapter 3). Where
-    ``w = 0`` (the rod perpendicular to the guide) the derivatives divide by zero: they are unbounded
+    from differentiating ``c_B² + h_J² = rod²`` and ``rod·sin(ψ − β) = −h_J`` (chapter 3). Where
+    ``c_B = 0`` (the rod perpendicular to the guide) the derivatives divide by zero: they are unbounded
     (``±inf``) or undefined (``nan`` if J moves along the guide there, its velocity across the guide
     zero to round-off, so that the rates are 0/0), and ``singular`` marks
-    them; so does a w² within 100 times its round-off of zero, where the computed w is mostly
+    them; so does a c_B² within 100 times its round-off of zero, where the computed c_B is mostly
     round-off and would give huge finite rates (the crank angles of a limit of assembly, found
     by an arcsin, land there). A joint beyond reach by more than the round-off of
-    ``w²`` (``8ε·rod·(rod + |J − P|)``) is an assembly error; one within it is taken as at reach.
+    ``c_B²`` (``8ε·rod·(rod + |J − P|)``) is an assembly error; one within it is taken as at reach.
     """
     rod = require_length("rod", rod)
     branch = require_branch(branch)

@@ -7,12 +7,12 @@ with exact first and second time derivatives:
 * where do two moving lines meet (a slider on a coupler and a fixed guide; the lecture's
   point D of two rockers with a slotted pair) — :func:`line_intersection`;
 * how far is a moving point from a moving line, and where is the foot of the perpendicular
-  (the lecture's h and K) — :func:`distance_to_line`;
+  (the lecture's h and K; the book's h_N and N) — :func:`distance_to_line`;
 * where does a circle about a moving point meet a moving line (a rocker whose pin slides in the
   slot of a lever) — :func:`circle_on_line`;
 
-and one derived quantity: the angle μ between a link of length L and a line from which one end
-of the link is h away, ``sin μ = h / L`` — :func:`angle_from_distance`.
+and one derived quantity: the angle η between a link of length L and a line from which one end
+of the link is h away, ``sin η = h / L`` — :func:`angle_from_distance`.
 
 A line is given by a point Q on it (a :class:`~mechanisms.motion.PointMotion` or a fixed complex
 number) and its direction θ (an :class:`~mechanisms.motion.AngleMotion` or a fixed angle in rad);
@@ -132,10 +132,10 @@ class LineIntersection:
     Attributes
     ----------
     point : PointMotion
-        The intersection K (m, m/s, m/s²).
+        The intersection point (m, m/s, m/s²).
     along_first, along_second : Motion
-        Signed distances s₁, s₂ of K from the points Q₁, Q₂ along the two lines, in the
-        directions of ``e₁``, ``e₂`` (m, m/s, m/s²): ``K = Q₁ + s₁ e₁ = Q₂ + s₂ e₂``.
+        Signed distances s₁, s₂ of the intersection from the points Q₁, Q₂ along the two lines, in the
+        directions of ``e₁``, ``e₂`` (m, m/s, m/s²): ``Q₁ + s₁ e₁ = Q₂ + s₂ e₂``.
     singular : ndarray of bool
         True where the lines are parallel (no intersection, or a whole line of them).
     """
@@ -174,7 +174,7 @@ def line_intersection(first_point: PointMotion | complex, first_angle: AngleMoti
     ``s₁ = (D × e₂) / (e₁ × e₂)``,  ``s₂ = (D × e₁) / (e₁ × e₂)``,  ``e₁ × e₂ = sin(β₂ − β₁)``.
 
     The numerators and the denominator are differentiated by Leibniz's rule and the quotients by
-    the quotient rule; ``K = Q₁ + s₁ e₁`` likewise. The lecture's slide "slider on a coupler with a
+    the quotient rule; the point ``Q₁ + s₁ e₁`` likewise. The lecture's slide "slider on a coupler with a
     fixed guide" writes the same point with slopes, ``x_L = (n − m)/(tg θ − tg η)``, which fails
     for a vertical line; this form has no such exception.
     """
@@ -208,17 +208,17 @@ def _undefined_where(motion, mask: np.ndarray):
 
 @dataclass(frozen=True)
 class PointLineDistance:
-    """A point P and a line through Q with direction θ: distance, foot of the perpendicular.
+    """A point M and a line through Q with direction θ: distance, foot of the perpendicular.
 
     Attributes
     ----------
     distance : Motion
-        The signed distance h of P from the line (m), positive when P is on the left of the line
+        The signed distance h of M from the line (m), positive when M is on the left of the line
         (the side of ``i·e``), with ``h_t`` (m/s) and ``h_tt`` (m/s²).
     along : Motion
-        The signed position u of the foot K along the line from Q (m, m/s, m/s²).
+        The signed position u of the foot N along the line from Q (m, m/s, m/s²).
     foot : PointMotion
-        The foot K of the perpendicular from P, ``K = Q + u e``.
+        The foot N of the perpendicular from M, ``N = Q + u e``.
     """
 
     distance: Motion
@@ -233,7 +233,7 @@ def distance_to_line(point: PointMotion | complex, through: PointMotion | comple
     Parameters
     ----------
     point : PointMotion or complex
-        The point P (m).
+        The point M (m).
     through : PointMotion or complex
         A point Q of the line (m).
     angle : AngleMotion or float
@@ -245,15 +245,15 @@ def distance_to_line(point: PointMotion | complex, through: PointMotion | comple
 
     Notes
     -----
-    In the line's own frame, ``w = ē (P − Q) = u + i h``. With ``R = P − Q`` and ``ē_t = −iθ_t ē``:
+    In the line's own frame, ``ζ = ē (M − Q) = u + i h``. With ``R = M − Q`` and ``ē_t = −iθ_t ē``:
 
-    * ``w_t = ē (R_t − iθ_t R)``,
-    * ``w_tt = ē (R_tt − 2iθ_t R_t − (iθ_tt + θ_t²) R)``,
+    * ``ζ_t = ē (R_t − iθ_t R)``,
+    * ``ζ_tt = ē (R_tt − 2iθ_t R_t − (iθ_tt + θ_t²) R)``,
 
-    and ``u = Re w``, ``h = Im w`` with the real and imaginary parts of the derivatives. For a fixed
-    line ``A x + B y + C = 0`` this is ``h = ±(A x_P + B y_P + C)/√(A² + B²)`` of the lecture, and then
-    ``h_t = ±(A (x_t)_P + B (y_t)_P)/√(A² + B²)``, ``h_tt = ±(A (x_tt)_P + B (y_tt)_P)/√(A² + B²)``: the
-    constant C does not survive differentiation (the lecture keeps it; see the errata).
+    and ``u = Re ζ``, ``h = Im ζ`` with the real and imaginary parts of the derivatives. For a fixed
+    line ``A_ℓ x + B_ℓ y + C_ℓ = 0`` this is ``h = ±(A_ℓ x_M + B_ℓ y_M + C_ℓ)/√(A_ℓ² + B_ℓ²)``
+    of the lecture, and then ``h_t = ±(A_ℓ (x_t)_M + B_ℓ (y_t)_M)/√(A_ℓ² + B_ℓ²)``,
+    ``h_tt = ±(A_ℓ (x_tt)_M + B_ℓ (y_tt)_M)/√(A_ℓ² + B_ℓ²)``: the constant C_ℓ does not survive differentiation (the lecture keeps it; see the errata).
     """
     like = _like(point, through, angle)
     order = _common_order(point, through)
@@ -287,7 +287,7 @@ class CircleOnLine:
         Its signed position s along the line from the line's point Q (m, m/s, m/s²); for a
         slotted lever, the current length from the pivot, the lecture's L_tek.
     distance : PointLineDistance
-        The centre's distance h from the line and the foot K of the perpendicular.
+        The centre's distance h from the line and the foot N of the perpendicular.
     singular : ndarray of bool
         True where the radius to D is perpendicular to the line (|h| = radius): the derivatives
         are unbounded there.
@@ -314,7 +314,7 @@ def circle_on_line(centre: PointMotion | complex, radius: float, through: PointM
     angle : AngleMotion or float
         The line's direction θ (rad), e.g. the lever's angle ξ.
     branch : int
-        +1: D is ahead of the foot K of the perpendicular from the centre (in the direction
+        +1: D is ahead of the foot N of the perpendicular from the centre (in the direction
         ``e``); −1: behind it.
     angles : array_like, optional
         Crank angles (rad), only to name positions in an :class:`AssemblyError`.
@@ -325,8 +325,8 @@ def circle_on_line(centre: PointMotion | complex, radius: float, through: PointM
 
     Notes
     -----
-    With h and u from :func:`distance_to_line` and ``w = √((R − h)(R + h))``:
-    ``s = u + b·w``, ``w_t = −h h_t / w``, ``w_tt = −(h_t² + h h_tt + w_t²)/w``, ``D = Q + s e``
+    With h and u from :func:`distance_to_line`, the radius R, ``c = √((R − h)(R + h))`` and σ the
+    branch: ``s = u + σ·c``, ``c_t = −h h_t / c``, ``c_tt = −(h_t² + h h_tt + c_t²)/c``, ``D = Q + s e``
     (lecture slides "two rockers with a slotted pair").
     """
     radius = require_length("radius", radius)
@@ -357,7 +357,7 @@ def circle_on_line(centre: PointMotion | complex, radius: float, through: PointM
 
 
 def angle_from_distance(distance: Motion, length: float) -> AngleMotion:
-    """The angle μ of a link of length L whose end is h from a line: ``sin μ = h/L``.
+    """The angle η of a link of length L whose end is h from a line: ``sin η = h/L``.
 
     Parameters
     ----------
@@ -370,13 +370,13 @@ def angle_from_distance(distance: Motion, length: float) -> AngleMotion:
     Returns
     -------
     AngleMotion
-        μ in [−π/2, π/2] with ``μ_t = h_t/(L cos μ)`` and
-        ``μ_tt = (h_tt/L + μ_t² sin μ)/cos μ``.
+        η in [−π/2, π/2] with ``η_t = h_t/(L cos η)`` and
+        ``η_tt = (h_tt/L + η_t² sin η)/cos η``.
 
     Notes
     -----
     Lecture slide "angle between the coupler and the fixed direction of the slider". Where
-    ``|h| = L`` (cos μ = 0) the derivatives are unbounded. ``μ = atan2(h, √((L − h)(L + h)))``
+    ``|h| = L`` (cos η = 0) the derivatives are unbounded. ``η = atan2(h, √((L − h)(L + h)))``
     keeps full accuracy near ±π/2, where ``arcsin(h/L)`` would not.
     """
     length = require_length("length", length)

@@ -171,13 +171,15 @@ class MissingDerivativeError(MechanismError, TypeError):
 
 
 class SingularPositionWarning(UserWarning):
-    """Velocities or accelerations are unbounded at some crank angles: a singular (locking) position.
+    """Velocities or accelerations are unbounded or undetermined at some crank angles: a singular
+    (locking) position.
 
     At a singular position the constraint Jacobian Φ_q is singular (the glossary's *singular
     position*: e.g. the limits of a non-Grashof four-bar, a change point, a slider whose coupler is
-    perpendicular to its guide), so the driven links' rates cannot follow from the crank's. The
-    solution marks these angles in ``Solution.singular`` and sets the unbounded values to
-    ``inf``/``nan`` on purpose; this warning says so, so nothing is NaN silently. (The limit, or
+    perpendicular to its guide), so the driven links' rates cannot follow from the crank's: they are
+    unbounded (``inf``, at the end of a crank's range) or undetermined (``nan``, e.g. at a change
+    point, where the two one-sided limits differ). The solution marks these angles in
+    ``Solution.singular`` and sets those values on purpose; this warning says so, so nothing is NaN silently. (The limit, or
     dead-centre, positions of an output are not singular: the output is at rest there.)
     """
 

@@ -264,12 +264,12 @@ def point_on_link(pole: PointMotion | complex, angle: AngleMotion, along: float,
     angle : AngleMotion
         The link's angle (direction from its first joint to its second).
     along, left : float
-        The point's coordinates in the link's frame (m): ``u`` along the link, ``v`` to the
+        The point's coordinates in the link's frame (m): ``u`` along the link, ``w`` to the
         left of it (counter-clockwise side).
 
     Notes
     -----
-    ``r = r_P + (u + iv)·exp(iθ)``; the derivatives are those of :func:`plane_motion`.
+    ``r = r_P + (u + iw)·exp(iθ)``; the derivatives are those of :func:`plane_motion`.
     """
     if isinstance(pole, Motion):
         position = pole.value + complex(along, left) * angle.unit()

@@ -48,8 +48,8 @@ class Solution:
     order : int
         0, 1 or 2: positions, up to velocities, up to accelerations.
     singular : ndarray of bool
-        True where a velocity or acceleration is unbounded (a singular position); those values
-        are ``inf`` or ``nan`` on purpose and a :class:`SingularPositionWarning` was issued.
+        True where a velocity or acceleration is unbounded or undetermined (a singular position);
+        those values are ``inf`` (unbounded) or ``nan`` (undetermined) on purpose and a :class:`SingularPositionWarning` was issued.
     """
 
     def __init__(self, phi: np.ndarray, order: int, *, angles: dict[str, AngleMotion],
@@ -337,7 +337,7 @@ class Mechanism(ABC):
         """Crank-angle intervals (rad, start < stop) in which the mechanism assembles.
 
         The one assembly-range API of every mechanism. A crank that turns fully has one interval
-        of length 2π (``[(θ0 − π, θ0 + π)]``); a mechanism that never assembles, none. A mechanism
+        of length 2π (``[(θ_OC − π, θ_OC + π)]``); a mechanism that never assembles, none. A mechanism
         that assembles at every crank angle sets ``always_assembles = True`` and gets ``[(−π, π)]``;
         one that does not says where it does by overriding this method.
         """

@@ -8,7 +8,7 @@ the checks, the generic solver's cross-check, drawings and energy.
 
 Every link has its own frame (its first joint at the origin, its x axis at the link's angle), and
 every joint or point of a link has fixed coordinates in it; a point's motion is then that of the
-link, ``r = r_P + (u + iv)·exp(iθ)`` (:func:`~mechanisms.core.motion.point_on_link`). A group
+link, ``r = r_P + (u + iw)·exp(iθ)`` (:func:`~mechanisms.core.motion.point_on_link`). A group
 with no closed form (a class III group, :class:`~mechanisms.linkages.groups.Triad`) is solved by
 Newton's method continued from the user's guess (:mod:`mechanisms.blocks.bars`).
 

@@ -284,7 +284,7 @@ class FourBar(Mechanism):
     joints in line); there the linkage keeps its assembly mode, i.e. it continues smoothly, with
     continuous angular velocities, and its geometric side changes. For such a linkage
     ``branch`` is the side on the stretch of crank angles between change points that contains
-    φ = θ0 + π/2 (θ0 = direction of OC; φ taken as it is, not modulo 2π), and the side at any
+    φ = θ_OC + π/2 (θ_OC = direction of OC; φ taken as it is, not modulo 2π), and the side at any
     other crank angle follows by counting the change points passed. The rule depends on the
     crank angle only, not on the step or the order of the array: a parallelogram stays a
     parallelogram whatever the step. With one change point per turn the motion repeats only

@@ -59,11 +59,11 @@ class SlottedLever(Mechanism):
     Parameters
     ----------
     crank : float
-        Crank radius r = |OA| (m), the textbook's l₁.
+        Crank length L₁ = |OA| (m), the textbook's l₁.
     pivot : tuple of float
         The lever's fixed pivot C = (x_C, y_C) (m); the crank turns about O = (0, 0).
     lever : float, optional
-        Length of the lever from C to its end B (m), for drawings; at least ``|OC| + r``, the
+        Length of the lever from C to its end B (m), for drawings; at least ``|OC| + L₁``, the
         farthest the block gets from the pivot (default: exactly that).
 
     Notes
@@ -90,7 +90,7 @@ class SlottedLever(Mechanism):
 
     @classmethod
     def example(cls) -> "SlottedLever":
-        """The benchmark's oscillating lever: r = 1 m, pivot C = (0, 2) m."""
+        """The benchmark's oscillating lever: L₁ = 1 m, pivot C = (0, 2) m."""
         return cls(crank=1.0, pivot=(0.0, 2.0))
 
     def groups(self) -> tuple[Group, ...]:
@@ -113,7 +113,7 @@ class SlottedLever(Mechanism):
         else:
             self.lever = require_length("lever", lever)
             if self.lever < reach * (1 - 1e-12):
-                raise InvalidParameterError("lever", lever, f"at least |OC| + r = {reach:g} m, so that the "
+                raise InvalidParameterError("lever", lever, f"at least |OC| + L₁ = {reach:g} m, so that the "
                                             "block stays in the slot")
 
     def _rescaled(self, factor: float) -> "SlottedLever":
@@ -164,7 +164,7 @@ class RockerInBlock(Mechanism):
     Parameters
     ----------
     crank : float
-        Crank length L1 = |OA| (m) (source 002: r = 1/k).
+        Crank length L₁ = |OA| (m) (source 002: r = 1/k).
     pivot : tuple of float
         The block's fixed pivot C = (x_C, y_C) (m), the package's joint ``B`` (source 002: (0, d)).
     reach : float, optional
@@ -197,7 +197,7 @@ class RockerInBlock(Mechanism):
 
     @classmethod
     def example(cls) -> "RockerInBlock":
-        """Chapter 5's rocker in a block: r = 2 m, pivot (0, 4) m."""
+        """Chapter 5's rocker in a block: L₁ = 2 m, pivot (0, 4) m."""
         return cls(crank=2.0, pivot=(0.0, 4.0))
 
     def __init__(self, crank: float, pivot: Sequence[float], reach: float | None = None):
@@ -242,11 +242,11 @@ class Shaper(Mechanism):
     Parameters
     ----------
     crank : float
-        Crank radius r = |OA| (m); the crank turns about O = (0, 0).
+        Crank length L₁ = |OA| (m); the crank turns about O = (0, 0).
     pivot : tuple of float
-        The lever's pivot C = (x_C, y_C) (m), farther from O than r (the lever oscillates).
+        The lever's pivot C = (x_C, y_C) (m), farther from O than L₁ (the lever oscillates).
     lever : float
-        Lever length |CB| (m), at least ``|OC| + r``.
+        Lever length |CB| (m), at least ``|OC| + L₁``.
     rod : float
         Length of the rod B→D from the lever's end to the ram (m).
     ram_height : float
@@ -275,7 +275,7 @@ class Shaper(Mechanism):
 
     @classmethod
     def example(cls) -> "Shaper":
-        """Chapter 5's shaper: r = 0.1 m, pivot (0, −0.4) m, lever 0.6 m, rod 0.15 m, ram at y = 0.22 m."""
+        """Chapter 5's shaper: L₁ = 0.1 m, pivot (0, −0.4) m, lever 0.6 m, rod 0.15 m, ram at y = 0.22 m."""
         return cls(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22)
 
     def groups(self) -> tuple[Group, ...]:
@@ -293,10 +293,10 @@ class Shaper(Mechanism):
         distance = abs(self.pivot_point)
         if not squared_distance_exceeds(self.pivot, self.crank):      # |OC| > r, exactly
             raise InvalidParameterError("pivot", pivot, f"farther from the crank centre than the crank "
-                                        f"(|OC| > r = {self.crank:g} m) for an oscillating lever; got |OC| = "
+                                        f"(|OC| > L₁ = {self.crank:g} m) for an oscillating lever; got |OC| = "
                                         f"{distance:g} m")
         if self.lever < (distance + self.crank) * (1 - 1e-12):
-            raise InvalidParameterError("lever", lever, f"at least |OC| + r = {distance + self.crank:g} m, so "
+            raise InvalidParameterError("lever", lever, f"at least |OC| + L₁ = {distance + self.crank:g} m, so "
                                         "that the block stays in the slot")
         self._lever = SlottedLever(self.crank, self.pivot, self.lever)
 
@@ -374,7 +374,7 @@ class SlottedRockers(Mechanism):
 
     @classmethod
     def example(cls) -> "SlottedRockers":
-        """Chapter 5's two rockers with a slotted pair: r = 0.1 m, pivots (0, 0.3) and (0.12, 0.38) m, rocker 0.2 m."""
+        """Chapter 5's two rockers with a slotted pair: L₁ = 0.1 m, pivots (0, 0.3) and (0.12, 0.38) m, rocker 0.2 m."""
         return cls(crank=0.1, pivot=(0.0, 0.3), rocker_pivot=(0.12, 0.38), rocker=0.2)
 
     def __init__(self, crank: float, pivot: Sequence[float], rocker_pivot: Sequence[float], rocker: float,
@@ -386,7 +386,7 @@ class SlottedRockers(Mechanism):
         self.branch = require_branch(branch)
         self._lever = SlottedLever(self.crank, self.pivot)
         if self._lever.kind == "through pivot":
-            raise InvalidParameterError("pivot", pivot, "off the crank circle (|O O1| ≠ r)")
+            raise InvalidParameterError("pivot", pivot, "off the crank circle (|O O1| ≠ L₁)")
         self.lever = max(self._lever.lever, abs(complex(*self.rocker_pivot) - complex(*self.pivot)) + self.rocker)
 
     def _rescaled(self, factor: float) -> "SlottedRockers":
@@ -444,7 +444,7 @@ class SliderOnCoupler(Mechanism):
     Parameters
     ----------
     crank : float
-        Crank radius r = |OA| (m).
+        Crank length L₁ = |OA| (m).
     rod : float
         Coupler length |AB| (m); B slides on the line y = ``offset``.
     offset : float
@@ -452,7 +452,7 @@ class SliderOnCoupler(Mechanism):
     guide_point : tuple of float
         A point (x₀, y₀) of the second, fixed guide (m), on which L runs.
     guide_angle : float
-        The second guide's direction γ (rad).
+        The second guide's direction β₂ (rad).
 
     Notes
     -----
