@@ -274,7 +274,7 @@ def energy_swing(phi: ArrayLike, torque: ArrayLike) -> float:
     Returns
     -------
     float
-        ``ΔE = max W − min W`` with ``W(φ) = ∫ (M_d − M_c) dφ`` taken with its mean slope removed
+        ``ΔE = max E − min E`` with the excess work ``E(φ) = ∫ (M_d − M_c) dφ`` taken with its mean slope removed
         (the trapezoid rule), i.e. for a driving torque whose work over the period equals that of
         the resistance.
     """

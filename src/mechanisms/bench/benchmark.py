@@ -169,9 +169,10 @@ def jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
     Returns
     -------
     ndarray
-        ``cond₂(Φ_q) = σ_max/σ_min`` at each position: how much a relative error of the
-        constraint residual can grow in the coordinates; ``inf`` where Φ_q is singular (dead
-        centres, change points). It depends on the units of the coordinates when they mix angles
+        ``cond₂(Φ_q)``, the largest over the smallest singular value of Φ_q, at each position: how
+        much a relative error of the constraint residual can grow in the coordinates; ``inf`` at a
+        singular position (the end of a crank's range, a rod perpendicular to its guide, a change
+        point). It depends on the units of the coordinates when they mix angles
         and lengths (chapter 9).
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))

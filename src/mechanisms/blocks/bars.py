@@ -3,19 +3,19 @@
 A class III Assur group (three joints, four links, six pairs) cannot be solved joint after joint:
 its joints must be found together. Each bar says that two joints keep their distance,
 
-    g = (|r_a − r_b|² − L²) / (2L) = 0      (≈ |r_a − r_b| − L, in m),
+    Φ = (|r_a − r_b|² − L²) / (2L) = 0      (≈ |r_a − r_b| − L, in m),
 
-and the k joints of the group have 2k coordinates for 2k bars. Newton's method solves
-``J Δx = −g`` with the Jacobian J (row of a bar: ``(r_a − r_b)/L`` in the columns of a, its
+and the k joints of the group have 2k coordinates q for 2k bars. Newton's method solves
+``Φ_q Δq = −Φ`` with the Jacobian Φ_q (row of a bar: ``(r_a − r_b)/L`` in the columns of a, its
 negative in those of b). The assembly mode is the one of the user's guess: the solution is
 continued from the guess's crank angle in steps of at most 2°, and every requested position
 starts from the nearest step, so a position is never taken from another mode.
 
-Velocities and accelerations are linear: differentiating g along the motion,
+Velocities and accelerations are linear: differentiating Φ along the motion,
 
     (r_a − r_b)·(v_a − v_b) = 0,    (r_a − r_b)·(a_a − a_b) + |v_a − v_b|² = 0,
 
-the same matrix J with the known joints' terms on the right.
+the same matrix Φ_q with the known joints' terms on the right.
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ def _unknown_index(joints: Sequence[str]) -> dict[str, int]:
 
 def _residual_and_jacobian(x: np.ndarray, known: Mapping[str, np.ndarray], index: Mapping[str, int],
                            bars: Sequence[tuple[str, str, float]]) -> tuple[np.ndarray, np.ndarray]:
-    """g (n, m) and J (n, m, 2k) at the unknowns x (n, k) complex."""
+    """Φ (n, m) and Φ_q (n, m, 2k) at the unknowns q (n, k) complex."""
     n, k = x.shape
     residual = np.empty((n, len(bars)))
     jacobian = np.zeros((n, len(bars), 2 * k))

@@ -30,7 +30,7 @@ from ..core.motion import AngleMotion, PointMotion
 __all__ = ["Hinge", "hinge", "hinge_plain", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
 
 ASSEMBLY_TOLERANCE = 1e-12
-"""Relative overlap of the circles accepted as touching (round-off), as a fraction of L_p + L_q."""
+"""Relative overlap of the circles accepted as touching (round-off), as a fraction of |pJ| + |qJ|."""
 
 SINGULAR_TOLERANCE = 1e-6
 """A hinge is marked singular where |sin| of the angle between its links is below this.
@@ -49,13 +49,13 @@ class Hinge:
     point : PointMotion
         J with its velocity and acceleration (m, m/s, m/s²).
     angle_p : AngleMotion
-        Angle of the link p → J (rad) with ω, α.
+        Angle of the link p → J (rad) with ω, ε (``omega``, ``alpha``).
     angle_q : AngleMotion
-        Angle of the link q → J (rad) with ω, α.
+        Angle of the link q → J (rad) with ω, ε (``omega``, ``alpha``).
     singular : ndarray of bool
         True where p, q and J are collinear: the two links are in line, the velocities of J
         are unbounded and are set to ``nan``; also where p and q coincide (possible for
-        L_p = L_q only), where J itself is undefined (anywhere on a circle) and is ``nan``.
+        |pJ| = |qJ| only), where J itself is undefined (anywhere on a circle) and is ``nan``.
     """
 
     point: PointMotion
@@ -177,7 +177,7 @@ def hinge_plain(p: PointMotion, q: PointMotion, length_p: float, length_q: float
 
 def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray = 1,
           angles: ArrayLike | None = None) -> Hinge:
-    """Solve two links meeting at a hinge: J with |J − p| = L_p and |J − q| = L_q.
+    """Solve two links meeting at a hinge: J at the lengths |pJ| = ``length_p`` and |qJ| = ``length_q``.
 
     Parameters
     ----------
@@ -200,22 +200,22 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     Raises
     ------
     AssemblyError
-        Where the circles do not meet: the joints are farther apart than L_p + L_q, or one
-        circle lies inside the other (distance below |L_p − L_q|).
+        Where the circles do not meet: the joints are farther apart than |pJ| + |qJ|, or one
+        circle lies inside the other (distance below ||pJ| − |qJ||).
 
     Notes
     -----
     With ``d = q − p``, ``D = |d|``, J is found in the frame of the line p → q:
     ``J = p + (m + i·branch·h)·d/D`` with the foot of the perpendicular
-    ``m = (D² + L_p² − L_q²)/(2D)`` and the height
-    ``h = √((L_p + L_q + D)(L_p + L_q − D))·√((D − |L_p − L_q|)(D + |L_p − L_q|))/(2D)`` (Heron), a
+    ``m = (D² + |pJ|² − |qJ|²)/(2D)`` and the height
+    ``h = √((|pJ| + |qJ| + D)(|pJ| + |qJ| − D))·√((D − ||pJ| − |qJ||)(D + ||pJ| − |qJ||))/(2D)`` (Heron), a
     product in which the two small factors near a limit are computed directly, and whose two roots
     keep it free of overflow for any lengths between 1e-150 m and 1e150 m; no ``arccos``.
 
     Velocities: differentiating ``p + r_p = q + r_q`` (r_p = J − p, r_q = J − q) in Euler form,
     ``iω_p r_p − iω_q r_q = v_q − v_p``; accelerations:
-    ``iα_p r_p − iα_q r_q = a_q − a_p + ω_p² r_p − ω_q² r_q``. Both are solved by Cramer's rule
-    with the determinant ``r_p × r_q`` = L_p L_q sin(θ_q − θ_p), zero where the links are in line
+    ``iε_p r_p − iε_q r_q = a_q − a_p + ω_p² r_p − ω_q² r_q``. Both are solved by Cramer's rule
+    with the determinant ``r_p × r_q`` = |pJ| |qJ| sin(θ_q − θ_p), zero where the links are in line
     (chapter 4; the lecture's crank-rocker is the case p = A, q = C).
     """
     if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:

@@ -121,7 +121,7 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     them; so does a c_B² within 100 times its round-off of zero, where the computed c_B is mostly
     round-off and would give huge finite rates (the crank angles of a limit of assembly, found
     by an arcsin, land there). A joint beyond reach by more than the round-off of
-    ``c_B²`` (``8ε·rod·(rod + |J − P|)``) is an assembly error; one within it is taken as at reach.
+    ``c_B²`` (``8ε_mach·rod·(rod + |J − P|)``) is an assembly error; one within it is taken as at reach.
     """
     rod = require_length("rod", rod)
     branch = require_branch(branch)

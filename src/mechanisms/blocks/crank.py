@@ -13,7 +13,7 @@ __all__ = ["crank_angle", "crank_pin"]
 
 
 def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order: int = 2) -> AngleMotion:
-    """The crank's angle φ with φ_t = ω and φ_tt = α, as arrays over the positions.
+    """The crank's angle φ with φ_t = ω and φ_tt = ε, as arrays over the positions.
 
     Parameters
     ----------
@@ -23,7 +23,7 @@ def crank_angle(phi: ArrayLike, omega: ArrayLike, alpha: ArrayLike = 0.0, order:
         Angular velocity φ_t (1/s) at each position: one number or one per crank angle (an array
         that broadcasts to the shape of ``phi``), each finite, |ω| ≤ 1e50 1/s.
     alpha : float or array_like
-        Angular acceleration φ_tt (1/s²) at each position, likewise; |α| ≤ 1e100 1/s².
+        Angular acceleration φ_tt (1/s²) at each position, likewise; |ε| ≤ 1e100 1/s².
     order : int
         0, 1 or 2: how many time derivatives to keep.
 

@@ -177,10 +177,12 @@ class SingularPositionWarning(UserWarning):
     At a singular position the constraint Jacobian Φ_q is singular (the glossary's *singular
     position*: e.g. the limits of a non-Grashof four-bar, a change point, a slider whose coupler is
     perpendicular to its guide), so the driven links' rates cannot follow from the crank's: they are
-    unbounded (``inf``, at the end of a crank's range) or undetermined (``nan``, e.g. at a change
-    point, where the two one-sided limits differ). The solution marks these angles in
-    ``Solution.singular`` and sets those values on purpose; this warning says so, so nothing is NaN silently. (The limit, or
-    dead-centre, positions of an output are not singular: the output is at rest there.)
+    unbounded (``inf`` where the routine knows it, as for a crank-slider at an end of its crank's
+    range; the four-bar gives ``nan`` there) or undetermined (``nan``: the constraints admit more than
+    one rate, as at a change point, or the one-sided limits differ, as for L₂ = L₁ + |e|). The
+    solution marks these angles in ``Solution.singular`` and sets those values on purpose; this
+    warning says so, so nothing is NaN silently. (The limit, or dead-centre, positions of an output
+    are not singular: the output is at rest there.)
     """
 
 

@@ -506,11 +506,11 @@ class SliderOnCoupler(Mechanism):
                         singular=slide.singular | crossing.singular)
 
     def guide_angle_of_coupler(self, solution: Solution) -> AngleMotion:
-        """The angle μ between the slider B's guide and the coupler, from ``sin μ = h / L₂``.
+        """The angle η between the slider B's guide and the coupler, from ``sin η = h_N / L₂``.
 
-        h is the signed distance of the crank pin A from the guide of B (left positive),
-        :func:`~mechanisms.blocks.lines.distance_to_line`; μ follows the lecture's slide. For
-        the slider to the right of A (this mechanism) μ = −(ψ − 0) with ψ the coupler angle.
+        h_N is the signed distance of the crank pin A from the guide of B (left positive),
+        :func:`~mechanisms.blocks.lines.distance_to_line`; η follows the lecture's slide (§5.7). For
+        the slider to the right of A (this mechanism) η = −ψ with ψ the coupler angle.
         """
         h = distance_to_line(solution.point("A"), 1j * self.offset, 0.0).distance
         return angle_from_distance(h, self.rod)

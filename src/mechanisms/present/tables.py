@@ -116,7 +116,7 @@ def magnitude(value: float) -> str:
     """The power of ten nearest to a round-off error, for people: ``"≈ 1e-10"`` for 4.8e-11.
 
     An error made of rounding changes its digits with the order of floating-point operations, but
-    rarely its order of magnitude; chapter 9 compares such errors with estimates like ε/δ.
+    rarely its order of magnitude; chapter 9 compares such errors with estimates like ε_mach/Δφ.
     """
     if value == 0.0:
         return "0"

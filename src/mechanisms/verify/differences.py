@@ -33,7 +33,7 @@ def central_difference(function: Callable[[np.ndarray], np.ndarray], phi: ArrayL
 
     Notes
     -----
-    Truncation error O(h²) against round-off O(ε/h) (first) or O(ε/h²) (second): the best
+    Truncation error O(h²) against round-off O(ε_mach/h) (first) or O(ε_mach/h²) (second): the best
     step is about 1e-5 for the first and 1e-4 for the second derivative (chapter 9).
     """
     phi = np.asarray(phi, dtype=float)
