@@ -127,6 +127,10 @@ NOT_THE_BOOKS = {
     "(iα − ω²)": "the angular acceleration is ε",
     "α = θ_tt": "the angular acceleration is ε",
     "J_S α": "the angular acceleration is ε",
+    "sin μ =": "the angle between a link and a line is η (μ is the transmission angle)",
+    "ε/δ": "a round-off estimate is ε_mach/Δφ (ε, δ are an acceleration and the speed fluctuation)",
+    "J Δx": "Newton's step is Φ_q Δq = −Φ (J is a moment of inertia)",
+    "u + iv": "a point of a link is (u + iw) (v is a velocity)",
 }
 PAPER_NAMES = re.compile(r"\bK_v\b|\bγ\b")          # the synthesis paper's letters for K and μ₁
 
