@@ -122,6 +122,14 @@ def test_draw_plans_puts_the_mechanism_above_its_two_plans():
     assert len(axes) == 2
 
 
+def test_draw_plans_moves_the_joint_letters_it_is_given():
+    sol, v, a = _example_plans()
+    fig, axes = plot_plans.draw_plans(EXAMPLE, sol, v, a, label_offset={"A": (10, 3)})
+    letters = {t.get_text(): t for t in axes[0].texts}
+    assert letters["$A$"].xyann == (10, 3)                     # as asked, in points
+    assert letters["$B$"].xyann != (10, 3)                     # the others where draw puts them
+
+
 def test_instant_centres_of_a_four_bar_are_marked_and_labelled():
     m = mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05))
     sol = m.solve(np.radians([60.0]), omega=10.0, order=0)

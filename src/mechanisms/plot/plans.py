@@ -492,8 +492,15 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
 
 def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
                acceleration: AccelerationPlan | None = None, index: int = 0,
-               figsize: tuple[float, float] | None = None) -> tuple[Figure, list[Axes]]:
+               figsize: tuple[float, float] | None = None,
+               label_offset: Mapping[str, tuple[float, float]] | None = None) -> tuple[Figure, list[Axes]]:
     """The mechanism at a position beside its velocity plan (and its acceleration plan).
+
+    Parameters
+    ----------
+    label_offset : dict, optional
+        ``{joint: (dx, dy)}`` in points, for joint letters of the drawing that should sit elsewhere
+        than :func:`~mechanisms.plot.draw` puts them (off a block or a guide's hatching).
 
     Returns
     -------
@@ -509,7 +516,7 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     ratios = [np.sqrt((x1 - x0) / (y1 - y0)) for (x0, x1), (y0, y1) in shapes]
     grid = fig.add_gridspec(2, count, height_ratios=(1.0, 1.7), width_ratios=ratios)
     axes = [fig.add_subplot(grid[0, :])] + [fig.add_subplot(grid[1, k]) for k in range(count)]
-    draw(mechanism, solution, index=index, ax=axes[0])
+    draw(mechanism, solution, index=index, ax=axes[0], label_offset=label_offset)
     for name, position in velocity.positions.items():
         if name not in solution.point_names and name != "A3":
             axes[0].plot(position.real, position.imag, "o", ms=4, color=ROLE_COLOURS["point"], zorder=5)
