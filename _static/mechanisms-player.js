@@ -83,7 +83,7 @@
     this.play.addEventListener("click", function () { self.toggle(); });
     controls.appendChild(this.play);
     var angle = element("label", { "class": "mech-slider" });
-    angle.appendChild(element("span", { "class": "mech-slider-name" }, d.angle));
+    angle.appendChild(element("span", { "class": "mech-slider-name" })).appendChild(label(d.angle));
     this.angle = element("input", { "type": "range", "class": "mech-angle", "min": "0",
       "max": String(d.phi.length - 1), "step": "1", "aria-label": "crank angle " + d.angle });
     this.angle.addEventListener("input", function () { self.stop(); self.show(parseInt(self.angle.value, 10)); });

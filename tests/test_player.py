@@ -395,8 +395,10 @@ def test_site_players_work(browser, servers, edition, page_path):
 def test_symbols_in_labels_and_notes_are_set_as_the_texts_math(page, scenes):
     """Letters of a symbol in italics, "_1" a subscript, digits upright; a note's $…$ likewise, no dollar left."""
     root = player("family")
-    name = page.eval_on_selector(root + " .mech-slider-name .mech-symbol", "s => s.innerHTML")
-    assert name == "<i>L</i><sub>1</sub>", name
+    names = page.eval_on_selector_all(root + " .mech-slider-name .mech-symbol", "ss => ss.map(s => s.innerHTML)")
+    assert names == ["<i>φ</i>", "<i>L</i><sub>1</sub>"], names        # the crank angle, the parameter
+    style = page.eval_on_selector(root + " .mech-label", "t => getComputedStyle(t).fontStyle")
+    assert style == "italic", style                                     # joint letters as in the figures
     note = page.eval_on_selector(root + " .mech-notes", "n => n.innerHTML")
     assert '<span class="mech-symbol"><i>L</i><sub>1</sub></span>' in note and "$" not in note, note
     readout = page.eval_on_selector_all(root + " .mech-readout .mech-symbol", "ss => ss.map(s => s.innerHTML)")
