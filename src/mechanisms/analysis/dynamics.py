@@ -164,7 +164,7 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
     duration : float
         Time span (s), > 0.
     steps : int
-        Number of fixed time steps h = duration/steps.
+        Number of fixed time steps Δt = duration/steps.
     phi0, omega0 : float or array_like
         Initial crank angle (rad) and speed (1/s).
 
@@ -174,14 +174,14 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
 
     Notes
     -----
-    The classical fourth-order Runge–Kutta method with a fixed step h on the state (φ, φ_t);
+    The classical fourth-order Runge–Kutta method with a fixed step Δt on the state (φ, φ_t);
     every stage evaluates J_red, J_red' and M_c exactly (:func:`reduced_model`). For a smooth
-    right-hand side the local error is O(h⁵) and the global error O(h⁴): halving the step
+    right-hand side the local error is O(Δt⁵) and the global error O(Δt⁴): halving the step
     divides the error by about 16. The tests measure it as the drift of the energy of a free
     run (no drive, no load), which the exact motion conserves: for the crank-slider of
     chapter 7, below 1e-7 of the energy over 3 revolutions at 200 steps per revolution, and
-    about 16 times less when h halves.
-    A load with a jump in its reduced torque lowers the order near the jump; choose h small
+    about 16 times less when Δt halves.
+    A load with a jump in its reduced torque lowers the order near the jump; choose Δt small
     against the angle over which the load changes.
     """
     duration = float(duration)
@@ -291,11 +291,11 @@ def energy_swing(phi: ArrayLike, torque: ArrayLike) -> float:
 
 
 def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> float:
-    """The moment of inertia (kg·m²) that keeps the speed fluctuation to δ: ``J = ΔE/(δ ω_m²)``.
+    """The moment of inertia (kg·m²) that keeps the speed fluctuation to δ: ``J_tot = ΔE/(δ ω_m²)``.
 
     Notes
     -----
-    From ``ΔE = J (ω_max² − ω_min²)/2 = J ω_m² δ`` for a constant J: the classical estimate
+    From ``ΔE = J_tot (ω_max² − ω_min²)/2 = J_tot ω_m² δ`` for a constant J_tot: the classical estimate
     (chapter 7). The result J_tot includes the mean reduced inertia of the mechanism itself, which
     is subtracted to size the flywheel. The variable part of J_red enters through ``swing``: pass the
     swing of the excess work with the torque ½ J_red′ ω_m² included (:func:`energy_swing` of

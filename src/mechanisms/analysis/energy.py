@@ -144,16 +144,16 @@ class Spring:
     anchor : complex
         The fixed end ``x + iy`` (m).
     stiffness : float
-        k (N/m), ≥ 0.
+        k_s (N/m), ≥ 0.
     free_length : float
-        ℓ0 (m), ≥ 0: the length at which it carries no force.
+        ℓ_s0 (m), ≥ 0: the length at which it carries no force.
     along, left : float
         The attachment point in the body's frame (m).
 
     Notes
     -----
-    ``V = k (ℓ − ℓ0)²/2`` with ℓ the current length; the force on the body is
-    ``−k (ℓ − ℓ0) e``, e the unit vector from the anchor to the attachment point.
+    ``V = k_s (ℓ_s − ℓ_s0)²/2`` with ℓ_s the current length; the force on the body is
+    ``−k_s (ℓ_s − ℓ_s0) û``, û the unit vector from the anchor to the attachment point.
     """
 
     body: str
@@ -443,7 +443,7 @@ def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass],
 
 
 def reduced_torque(mechanism: Mechanism, loads: Sequence[Force | Torque], phi: ArrayLike) -> np.ndarray:
-    """The reduced torque of the applied loads at the crank, M_red(φ) = P_loads/φ_t (N·m).
+    """The reduced torque of the applied loads at the crank, M_red(φ) = (the loads' power)/φ_t (N·m).
 
     Their power at φ_t = 1 (the loads' part of the generalized force Q_φ = M_d − M_c, chapter 7). The loads are evaluated on the
     solution at φ_t = 1, φ_tt = 0, so a load may depend on the position and on the direction of

@@ -5,14 +5,14 @@ shaper (chapter 5) and every "link ending in a slider" of the lecture are this b
 J moves, the rod J→B has a fixed length, and B is held on a fixed line. B is where the circle of
 radius ``rod`` about J meets the line; of the two intersections, ``branch`` picks one.
 
-Geometry, in the guide's own frame (unit vector ``e = exp(iβ)`` along the guide, β its direction, ``i·e`` to its
+Geometry, in the guide's own frame (unit vector ``ê = exp(iβ)`` along the guide, β its direction, ``i·ê`` to its
 left, origin at the point ``P`` the guide passes through)::
 
-    u   = Re(ē (J − P))           position of the foot of the perpendicular from J
-    h_J = Im(ē (J − P))           signed distance of J from the guide (left positive; h_A of ch. 3)
+    u   = Re(ê* (J − P))           position of the foot of the perpendicular from J
+    h_J = Im(ê* (J − P))           signed distance of J from the guide (left positive; h_A of ch. 3)
     c_B = √((rod − h_J)(rod + h_J)) half-chord: distance from the foot to B
     s   = u + σ · c_B              position of B along the guide (σ = ``branch``)
-    B   = P + s e
+    B   = P + s ê
 
 The product ``(rod − h_J)(rod + h_J)`` instead of ``rod² − h_J²`` keeps full relative accuracy when
 |h_J| is close to ``rod`` (no cancellation of two large squares).
@@ -108,8 +108,8 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     With the guide frame of the module docstring, ``c_B = √((rod − h_J)(rod + h_J))`` and σ the
     branch:
 
-    * positions: ``s = u + σ·c_B``, ``B = P + s·e``, rod angle ``ψ = β + atan2(−h_J, σ·c_B)``;
-    * velocities: ``u_t = Re(ē J_t)``, ``h_J,t = Im(ē J_t)``, ``c_B,t = −h_J h_J,t / c_B``,
+    * positions: ``s = u + σ·c_B``, ``B = P + s·ê``, rod angle ``ψ = β + atan2(−h_J, σ·c_B)``;
+    * velocities: ``u_t = Re(ê* J_t)``, ``h_J,t = Im(ê* J_t)``, ``c_B,t = −h_J h_J,t / c_B``,
       ``s_t = u_t + σ·c_B,t``, ``ψ_t = −σ·h_J,t / c_B``;
     * accelerations: ``c_B,tt = −(h_J,t² + h_J h_J,tt + c_B,t²) / c_B``, ``s_tt = u_tt + σ·c_B,tt``,
       ``ψ_tt = −(σ·h_J,tt + ψ_t c_B,t) / c_B``,

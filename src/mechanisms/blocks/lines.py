@@ -11,12 +11,12 @@ with exact first and second time derivatives:
 * where does a circle about a moving point meet a moving line (a rocker whose pin slides in the
   slot of a lever) — :func:`circle_on_line`;
 
-and one derived quantity: the angle η between a link of length L and a line from which one end
-of the link is h away, ``sin η = h / L`` — :func:`angle_from_distance`.
+and one derived quantity: the angle η between a link of length L₂ and a line from which one end
+of the link is h away, ``sin η = h / L₂`` — :func:`angle_from_distance`.
 
 A line is given by a point Q on it (a :class:`~mechanisms.motion.PointMotion` or a fixed complex
 number) and its direction θ (an :class:`~mechanisms.motion.AngleMotion` or a fixed angle in rad);
-its unit vector is ``e = exp(iθ)``, with ``e_t = iθ_t e`` and ``e_tt = (iθ_tt − θ_t²) e``.
+its unit vector is ``ê = exp(iθ)``, with ``ê_t = iθ_t ê`` and ``ê_tt = (iθ_tt − θ_t²) ê``.
 """
 
 from __future__ import annotations
@@ -135,7 +135,7 @@ class LineIntersection:
         The intersection point (m, m/s, m/s²).
     along_first, along_second : Motion
         Signed distances s₁, s₂ of the intersection from the points Q₁, Q₂ along the two lines, in the
-        directions of ``e₁``, ``e₂`` (m, m/s, m/s²): ``Q₁ + s₁ e₁ = Q₂ + s₂ e₂``.
+        directions of ``ê₁``, ``ê₂`` (m, m/s, m/s²): ``Q₁ + s₁ ê₁ = Q₂ + s₂ ê₂``.
     singular : ndarray of bool
         True where the lines are parallel (no intersection, or a whole line of them).
     """
@@ -168,13 +168,13 @@ def line_intersection(first_point: PointMotion | complex, first_angle: AngleMoti
 
     Notes
     -----
-    With ``D = Q₂ − Q₁`` and the cross product ``a × b = Im(ā b)``, taking the cross product of
-    ``Q₁ + s₁ e₁ = Q₂ + s₂ e₂`` with ``e₂`` and with ``e₁`` gives
+    With the cross product ``r₁ × r₂ = Im(r̄₁ r₂)`` (chapter 5), taking the cross product of
+    ``Q₁ + s₁ ê₁ = Q₂ + s₂ ê₂`` with ``ê₂`` and with ``ê₁`` gives
 
-    ``s₁ = (D × e₂) / (e₁ × e₂)``,  ``s₂ = (D × e₁) / (e₁ × e₂)``,  ``e₁ × e₂ = sin(β₂ − β₁)``.
+    ``s₁ = ((Q₂ − Q₁) × ê₂) / (ê₁ × ê₂)``,  ``s₂ = ((Q₂ − Q₁) × ê₁) / (ê₁ × ê₂)``,  ``ê₁ × ê₂ = sin(β₂ − β₁)``.
 
     The numerators and the denominator are differentiated by Leibniz's rule and the quotients by
-    the quotient rule; the point ``Q₁ + s₁ e₁`` likewise. The lecture's slide "slider on a coupler with a
+    the quotient rule; the point ``Q₁ + s₁ ê₁`` likewise. The lecture's slide "slider on a coupler with a
     fixed guide" writes the same point with slopes, ``x_L = (n − m)/(tg θ − tg η)``, which fails
     for a vertical line; this form has no such exception.
     """
@@ -214,11 +214,11 @@ class PointLineDistance:
     ----------
     distance : Motion
         The signed distance h of M from the line (m), positive when M is on the left of the line
-        (the side of ``i·e``), with ``h_t`` (m/s) and ``h_tt`` (m/s²).
+        (the side of ``i·ê``), with ``h_t`` (m/s) and ``h_tt`` (m/s²).
     along : Motion
         The signed position u of the foot N along the line from Q (m, m/s, m/s²).
     foot : PointMotion
-        The foot N of the perpendicular from M, ``N = Q + u e``.
+        The foot N of the perpendicular from M, ``N = Q + u ê``.
     """
 
     distance: Motion
@@ -245,10 +245,11 @@ def distance_to_line(point: PointMotion | complex, through: PointMotion | comple
 
     Notes
     -----
-    In the line's own frame, ``ζ = ē (M − Q) = u + i h``. With ``R = M − Q`` and ``ē_t = −iθ_t ē``:
+    In the line's own frame, ``ζ = ê* (M − Q) = u + i h`` (ê* the conjugate of ê). With ``z = M − Q`` and
+    ``ê*_t = −iθ_t ê*``:
 
-    * ``ζ_t = ē (R_t − iθ_t R)``,
-    * ``ζ_tt = ē (R_tt − 2iθ_t R_t − (iθ_tt + θ_t²) R)``,
+    * ``ζ_t = ê* (z_t − iθ_t z)``,
+    * ``ζ_tt = ê* (z_tt − 2iθ_t z_t − (iθ_tt + θ_t²) z)``,
 
     and ``u = Re ζ``, ``h = Im ζ`` with the real and imaginary parts of the derivatives. For a fixed
     line ``A_ℓ x + B_ℓ y + C_ℓ = 0`` this is ``h = ±(A_ℓ x_M + B_ℓ y_M + C_ℓ)/√(A_ℓ² + B_ℓ²)``
@@ -310,12 +311,12 @@ def circle_on_line(centre: PointMotion | complex, radius: float, through: PointM
     radius : float
         The radius (m), e.g. the rocker's length O₂D.
     through : PointMotion or complex
-        A point Q of the line (m), e.g. the lever's pivot O₁.
+        A point Q of the line (m), e.g. the lever's pivot C (the lecture's O₁).
     angle : AngleMotion or float
         The line's direction θ (rad), e.g. the lever's angle ξ.
     branch : int
         +1: D is ahead of the foot N of the perpendicular from the centre (in the direction
-        ``e``); −1: behind it.
+        ``ê``); −1: behind it.
     angles : array_like, optional
         Crank angles (rad), only to name positions in an :class:`AssemblyError`.
 
@@ -325,8 +326,9 @@ def circle_on_line(centre: PointMotion | complex, radius: float, through: PointM
 
     Notes
     -----
-    With h and u from :func:`distance_to_line`, the radius R, ``c = √((R − h)(R + h))`` and σ the
-    branch: ``s = u + σ·c``, ``c_t = −h h_t / c``, ``c_tt = −(h_t² + h h_tt + c_t²)/c``, ``D = Q + s e``
+    With h and u from :func:`distance_to_line`, the radius L₄ (§5.8), ``c_D = √((L₄ − h)(L₄ + h))`` and
+    σ the branch: ``s = u + σ·c_D``, ``c_D,t = −h h_t / c_D``, ``c_D,tt = −(h_t² + h h_tt + c_D,t²)/c_D``,
+    ``D = Q + s ê``
     (lecture slides "two rockers with a slotted pair").
     """
     radius = require_length("radius", radius)
