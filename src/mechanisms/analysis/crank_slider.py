@@ -291,13 +291,13 @@ def approximate_slider(mechanism: CrankSlider, phi: ArrayLike, omega: float = 1.
 
     Notes
     -----
-    ``√(L2² − h²) ≈ L2 − h²/(2 L2)`` with h = L1 sin φ − e gives
-    ``s ≈ L1 cos φ + b [L2 − (L1 sin φ − e)²/(2 L2)]``,
-    ``v ≈ −ω L1 [sin φ + b cos φ (L1 sin φ − e)/L2]``,
-    ``a ≈ −ω² L1 [cos φ + b (L1 cos 2φ + e sin φ)/L2]``.
-    For the axial mechanism (e = 0, b = +1) with λ = L1/L2 these are the familiar
+    ``√(L2² − h_A²) ≈ L2 − h_A²/(2 L2)`` with h_A = L1 sin φ − e and σ the branch gives
+    ``s ≈ L1 cos φ + σ [L2 − (L1 sin φ − e)²/(2 L2)]``,
+    ``v ≈ −ω L1 [sin φ + σ cos φ (L1 sin φ − e)/L2]``,
+    ``a ≈ −ω² L1 [cos φ + σ (L1 cos 2φ + e sin φ)/L2]``.
+    For the axial mechanism (e = 0, σ = +1) with λ = L1/L2 these are the familiar
     ``s ≈ L2 + L1 (cos φ − (λ/4)(1 − cos 2φ))``, ``v ≈ −ω L1 (sin φ + (λ/2) sin 2φ)``,
-    ``a ≈ −ω² L1 (cos φ + λ cos 2φ)``. The neglected term of s is −h⁴/(8 L2³), about L1 λ³/8.
+    ``a ≈ −ω² L1 (cos φ + λ cos 2φ)``. The neglected term of s is −h_A⁴/(8 L2³), about L1 λ³/8.
     """
     phi = require_finite_array("phi", phi, "crank angles in rad")
     omega = require_finite("omega", omega)

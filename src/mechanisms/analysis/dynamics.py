@@ -274,9 +274,9 @@ def energy_swing(phi: ArrayLike, torque: ArrayLike) -> float:
     Returns
     -------
     float
-        ``ΔE = max E − min E`` with the excess work ``E(φ) = ∫ (M_d − M_c) dφ`` taken with its mean slope removed
-        (the trapezoid rule), i.e. for a driving torque whose work over the period equals that of
-        the resistance.
+        ΔE, the largest swing (maximum minus minimum) of the excess work ``∫ (M_d − M_c) dφ``,
+        taken with its mean slope removed (the trapezoid rule), i.e. for a driving torque whose work
+        over the period equals that of the resistance.
     """
     phi = require_finite_array("phi", phi, "crank angles in rad")
     torque = require_finite_array("torque", torque, "N·m")

@@ -318,8 +318,8 @@ def potential_energy(solution: Solution, masses: Mapping[str, LinkMass], gravity
     Returns
     -------
     Motion
-        ``V = Σ m g y_S + Σ k (ℓ − ℓ0)²/2`` (zero level y = 0) and
-        ``dV/dt = Σ m g (y_S)_t + Σ k (ℓ − ℓ0) ℓ_t``.
+        ``V = Σ m g y_S + Σ k_s (ℓ_s − ℓ_s0)²/2`` (zero level y = 0) and
+        ``dV/dt = Σ m g (y_S)_t + Σ k_s (ℓ_s − ℓ_s0) ℓ_s,t``.
     """
     gravity = require_finite("gravity", gravity)
     shape = np.shape(solution.phi)
