@@ -7,8 +7,7 @@ equation ``d/dt(∂T/∂φ_t) − ∂T/∂φ = Q_φ`` (Q_φ the generalized forc
     J_red(φ) φ_tt + ½ J_red'(φ) φ_t² = M_d − M_c(φ),
 
 with M_d the driving torque and ``M_c = dV/dφ − M_red`` the reduced torque of the resistance
-(M_red the reduced torque of the applied loads)
-(gravity, springs and applied loads). This module evaluates that equation exactly, integrates
+(gravity and springs through V, the applied loads through their reduced torque M_red). This module evaluates that equation exactly, integrates
 it in time with the classical Runge–Kutta method, and gives the two classical figures of a
 machine in steady motion: the coefficient of speed fluctuation and the flywheel that keeps it
 small. numpy only.
@@ -244,7 +243,7 @@ def speed_fluctuation(run: Run, revolutions: int = 1) -> SpeedFluctuation:
 
     Notes
     -----
-    The extremes are taken over the time steps, so they are accurate to O(h²) relative to the
+    The extremes are taken over the time steps, so they are accurate to O(Δt²) relative to the
     curvature of ω(t) at its extremes: with 100 steps per revolution, to about 1e-4 of the swing.
     """
     phi = run.phi.reshape(len(run.t), -1)

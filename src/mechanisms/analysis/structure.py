@@ -106,7 +106,7 @@ class StructureReport:
 
     @property
     def mobility(self) -> int:
-        """Degrees of freedom W = 3n − 2p."""
+        """Degrees of freedom W = 3n − 2p₁ (p₁ lower pairs)."""
         return mobility(self.moving_links, self.lower_pairs)
 
     @property

@@ -395,7 +395,7 @@ class Linkage(Mechanism):
         return {name: list(item.local) for name, item in self._links.items()}
 
     def mobility(self) -> int:
-        """Degrees of freedom W = 3n − 2p by the structural formula (n moving links, p lower pairs)."""
+        """Degrees of freedom W = 3n − 2p₁ by the structural formula (n moving links, p₁ lower pairs)."""
         return 3 * (len(self._links) - 1) - 2 * len(self._pairs)
 
     def group_kind(self, group: Group) -> tuple[str, str]:

@@ -130,7 +130,7 @@ class On:
     """A point fixed to a link: ``along`` (m) from the link's first joint and ``left`` of it.
 
     Either may be the name of an explorer's parameter instead of a number: the point then moves
-    along the link as the reader moves that parameter's slider (ρ on the coupler).
+    along the link as the reader moves that parameter's slider (u on the coupler).
     """
 
     link: str
