@@ -4,7 +4,7 @@ import pathlib
 import re
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-PACKAGE = ROOT / "src" / "mechanisms"
+PACKAGE = ROOT / "mechanisms"
 
 
 def test_every_module_has_its_page_once():

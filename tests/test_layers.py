@@ -23,7 +23,7 @@ import pytest
 import mechanisms as mech
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-PACKAGE = ROOT / "src" / "mechanisms"
+PACKAGE = ROOT / "mechanisms"
 
 LAYERS = {
     "core": 1,
@@ -90,7 +90,7 @@ def test_no_module_imports_a_higher_layer(path):
 
 def test_readme_layer_table_is_the_tree():
     readme = (ROOT / "README.md").read_text()
-    named = set(re.findall(r"`src/mechanisms/([\w]+)(?:/|\.py)`", readme))
+    named = set(re.findall(r"`mechanisms/([\w]+)(?:/|\.py)`", readme))
     tree = {p.name for p in PACKAGE.iterdir() if p.is_dir() and (p / "__init__.py").exists()}
     tree |= {p.stem for p in PACKAGE.glob("*.py")} - ROOT_MODULES
     assert named == tree, (f"README's layer table names {sorted(named)}; the tree has {sorted(tree)}")

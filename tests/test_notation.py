@@ -117,7 +117,7 @@ def test_every_symbol_once():
 # which is ε; K, μ₁ are the time ratio and the transmission angle, not the paper's K_v, γ; angular
 # rates are in 1/s). A source's own letter may be named as the source's ("the paper writes … K_v").
 
-SOURCE = ROOT / "src" / "mechanisms"
+SOURCE = ROOT / "mechanisms"
 NOT_THE_BOOKS = {
     "rad/s": "angular rates are in 1/s",
     "Φ = −m": "the inertia force is F_in (Φ is the constraint vector)",
