@@ -99,7 +99,7 @@ def test_assign_refuses_bad_requests(tmp_path):
     result = run("assign", "gear-train", "--students", "3", "--out", str(tmp_path))
     assert result.returncode == 2 and "invalid choice: 'gear-train'" in result.stderr
     result = run("assign", "four-bar", "--students", "0", "--out", str(tmp_path))
-    assert result.returncode == 2 and "students must be a whole number ≥ 1" in result.stderr
+    assert result.returncode == 2 and "students must be a whole number from 1 to 9999" in result.stderr
     result = run("assign", "four-bar", "--students", "2", "--positions", "30", "--out", str(tmp_path))
     assert result.returncode == 2 and "positions must be a whole number from 1 to 24" in result.stderr
     assert "Traceback" not in result.stderr

@@ -68,10 +68,16 @@ def test_tolerance_values():
 
 def test_numbers():
     assert parse_number(" 12.5 ") == 12.5 and parse_number("-1e3") == -1000.0
-    with pytest.raises(ValueError, match="decimal point"):
-        parse_number("12,5")
-    assert parse_number("12,5", decimal_comma=True) == 12.5
-    for text in ("abc", "nan", "inf", "12.5 m/s"):
+    # a decimal comma that no thousands separator could be is read in any file: 12,5 is 12.5
+    assert parse_number("12,5") == 12.5 and parse_number("-0,25") == -0.25 and parse_number(",5") == 0.5
+    assert parse_number("1,5e3") == 1500.0 and parse_number("0,500") == 0.5
+    assert parse_number("\u22120.25") == -0.25 and parse_number(" \u22121,5 ") == -1.5   # U+2212, the minus sign
+    # 1,500: 1.5 with a decimal comma, 1500 with a thousands separator; only a decimal-comma file says which
+    with pytest.raises(ValueError, match=r"'1,500' is ambiguous: 1.500 with a decimal comma, 1500 with a "
+                                         r"thousands separator \(write it with a decimal point\)"):
+        parse_number("1,500")
+    assert parse_number("1,500", decimal_comma=True) == 1.5 and parse_number("-12,345", decimal_comma=True) == -12.345
+    for text in ("abc", "nan", "inf", "12.5 m/s", "1,234.5", "1,2,3", "5,", "\u0661\u0662", "--1", "1.2.3"):
         with pytest.raises(ValueError, match="not a"):
             parse_number(text)
 
@@ -220,7 +226,7 @@ def test_wrong_columns(assignment, tmp_path):
     (tmp_path / "c.csv").write_text("")
     with pytest.raises(GradingError, match="empty"):
         check_files(assignment / "key.csv", [tmp_path / "c.csv"])
-    (tmp_path / "d.csv").write_bytes(b"\xff\xfe\x00\x81binary")
+    (tmp_path / "d.csv").write_bytes(b"student\x81\xffbinary")      # not UTF-8, no byte-order mark
     with pytest.raises(GradingError, match="UTF-8"):
         check_files(assignment / "key.csv", [tmp_path / "d.csv"])
     with pytest.raises(GradingError, match="no such file"):

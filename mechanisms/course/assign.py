@@ -20,7 +20,6 @@ Column names of the key are those of ``python -m mechanisms table … --format c
 from __future__ import annotations
 
 import base64
-import csv
 import html
 import io
 import json
@@ -34,8 +33,10 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ..analysis.assignments import Quantity, Task, assignments
-from ..core.errors import SingularPositionWarning, InvalidParameterError, MechanismError
+from ..core.errors import SingularPositionWarning, InvalidParameterError, MechanismError, UnknownNameError
 from ..linkages.base import Mechanism, Solution
+from ..present.escape import csv_cell, markdown_text
+from .csvtext import CourseFileError, csv_lines, write_file
 from .roster import IDENTITY_COLUMNS, Person
 
 TASKS = assignments()
@@ -65,6 +66,24 @@ KEY_COLUMNS = ("student", "position", "phi_deg")
 STEP_DEG = 15
 """The crank positions of a variant are multiples of this angle (degrees)."""
 
+STUDENTS_MAX = 9999
+"""The most variants one call makes (``s0001`` … ``s9999``): a class, not a memory's worth."""
+
+_STUDENT_ID = re.compile(r"[A-Za-z0-9][A-Za-z0-9_-]{0,63}", re.ASCII)
+"""A student id: it names the student's files (``s01.html``, ``s01-answers.csv``), so it is a plain file name on
+every system: ASCII letters, digits, ``_`` and ``-``, a letter or digit first, at most 64 characters."""
+
+_RESERVED = {"con", "prn", "aux", "nul", *(f"{port}{n}" for port in ("com", "lpt") for n in range(10))}
+"""Names Windows keeps for devices: a file ``CON.html`` cannot be made there."""
+
+
+def _require_student_id(student: object) -> str:
+    if not isinstance(student, str) or not _STUDENT_ID.fullmatch(student) or student.casefold() in _RESERVED:
+        raise InvalidParameterError("student", student, "a student id that can name a file: ASCII letters, digits, "
+                                    "_ and -, a letter or digit first, at most 64 characters, not a device name "
+                                    "(CON, NUL, COM1 …)")
+    return student
+
 
 @dataclass(frozen=True)
 class Variant:
@@ -85,6 +104,9 @@ class Variant:
     mechanism: Mechanism
     omega: float
     positions_deg: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        _require_student_id(self.student)
 
     def solve(self) -> Solution:
         """The package's solution at the variant's positions (up to accelerations)."""
@@ -124,7 +146,10 @@ def quantity_values(solution: Solution, column: str) -> np.ndarray:
                  "vy": point.velocity.imag, "ax": point.acceleration.real, "ay": point.acceleration.imag}
         if key in parts:
             return np.asarray(parts[key], dtype=float)
-    raise KeyError(f"no quantity {column!r} in this solution")
+    known = ([f"{n}.{k}" for n in solution.angle_names for k in ("angle_deg", "omega", "alpha")]
+             + [f"{n}.{k}" for n in solution.slider_names for k in ("s", "v", "a", *solution.extras.get(n, {}))]
+             + [f"{n}.{k}" for n in solution.point_names for k in ("x", "y", "vx", "vy", "ax", "ay")])
+    raise UnknownNameError("quantity", column, known)
 
 
 def _positions(rng: np.random.Generator, count: int) -> tuple[float, ...]:
@@ -142,16 +167,36 @@ def make_variant(task: Task | str, seed: int, index: int, student: str | None = 
                  max_tries: int = 10_000) -> Variant:
     """Variant number ``index`` (0-based) of ``seed``: drawn until the task's checks pass.
 
+    Parameters
+    ----------
+    task : Task or str
+        The assignment, or its mechanism's command-line name.
+    seed : int
+        A whole number ≥ 0 (any size): the same seed gives the same variants.
+    index : int
+        The variant's number, ≥ 0.
+    student : str, optional
+        The student's id (default ``s`` and index + 1); it names the student's files, so it must be a plain file
+        name (ASCII letters, digits, ``_``, ``-``).
+    positions : int
+        Crank positions per variant, 1 to 24.
+
     Raises
     ------
     InvalidParameterError
-        For an unknown mechanism or a bad number of positions.
+        For an unknown mechanism, a bad seed, index, student id or number of positions.
     MechanismError
         If no valid variant was found in ``max_tries`` draws (the ranges do not suit the checks).
     """
     task = _task(task)
-    if not isinstance(positions, (int, np.integer)) or not 1 <= positions <= 360 // STEP_DEG:
+    if not _whole(positions) or not 1 <= positions <= 360 // STEP_DEG:
         raise InvalidParameterError("positions", positions, f"a whole number from 1 to {360 // STEP_DEG}")
+    if not _whole(seed) or seed < 0:
+        raise InvalidParameterError("seed", seed, "a whole number ≥ 0")
+    if not _whole(index) or index < 0:
+        raise InvalidParameterError("index", index, "a whole number ≥ 0")
+    student = _require_student_id(f"s{index + 1:02d}" if student is None else student)
+    seed, index = int(seed), int(index)
     # two independent streams: the positions do not depend on how many candidates were rejected
     lengths, angles = (np.random.default_rng(s) for s in np.random.SeedSequence(seed, spawn_key=(index,)).spawn(2))
     for _ in range(max_tries):
@@ -160,15 +205,24 @@ def make_variant(task: Task | str, seed: int, index: int, student: str | None = 
         except MechanismError:
             continue
         if not task.check(mechanism):
-            return Variant(student or f"s{index + 1:02d}", mechanism, omega, _positions(angles, positions))
+            return Variant(student, mechanism, omega, _positions(angles, positions))
     raise MechanismError(f"no valid {task.name} variant in {max_tries} draws (seed {seed}, variant {index})")
 
 
 def make_variants(task: Task | str, students: int, seed: int, positions: int = 3) -> list[Variant]:
-    """One variant per student, ``s01`` … ``sNN``; variant *i* depends only on the seed and *i*."""
-    if not isinstance(students, (int, np.integer)) or students < 1:
-        raise InvalidParameterError("students", students, "a whole number ≥ 1")
+    """One variant per student, ``s01`` … ``sNN``; variant *i* depends only on the seed and *i*.
+
+    ``students`` is a whole number from 1 to :data:`STUDENTS_MAX`; ``seed`` and ``positions`` as for
+    :func:`make_variant`.
+    """
+    if not _whole(students) or not 1 <= students <= STUDENTS_MAX:
+        raise InvalidParameterError("students", students, f"a whole number from 1 to {STUDENTS_MAX}")
     return [make_variant(task, seed, i, student, positions) for i, student in enumerate(student_ids(students))]
+
+
+def _whole(value: object) -> bool:
+    """True for a whole number of Python or numpy (not a bool, a float or a string)."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
 
 
 def _task(task: Task | str) -> Task:
@@ -195,13 +249,10 @@ def answer_key(task: Task | str, variants: Sequence[Variant]) -> list[dict]:
     return rows
 
 
-def _write_csv(path: pathlib.Path, columns: Sequence[str], rows: Sequence[dict]) -> None:
-    with path.open("w", newline="", encoding="utf8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(columns), lineterminator="\n")
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: (repr(v) if isinstance(v, float) and k not in KEY_COLUMNS else v)
-                             for k, v in row.items()})
+def _write_csv(path: pathlib.Path, columns: Sequence[str], rows: Sequence[dict], what: str) -> None:
+    """A CSV file of the assignment (:func:`~mechanisms.course.csvtext.csv_lines`): text (ids, names, e-mails,
+    identifiers) spreadsheet-safe, numbers as numbers (quantities to full precision)."""
+    write_file(path, csv_lines([columns, *([row.get(c) for c in columns] for row in rows)]), what)
 
 
 # --- sheets ---------------------------------------------------------------------------------------------
@@ -223,18 +274,18 @@ def drawing_png(variant: Variant) -> bytes:
     return buffer.getvalue()
 
 
-def _name_line(person: Person | None) -> str:
-    """The sheet's line for the student's name: filled in from the class list, else to be written."""
+def _name_line(person: Person | None, escape: Callable[[str], str]) -> str:
+    """The sheet's line for the student's name: filled in from the class list (each part through ``escape``, for
+    the sheet's format), else to be written."""
     if person is None or not (person.name or person.identifier):
         return "Name: ______________________   Group: ________"
-    who = person.name or "______________________"
-    return f"Name: {who}" + (f"   Identifier: {person.identifier}" if person.identifier else "")
+    who = escape(person.name) if person.name else "______________________"
+    return f"Name: {who}" + (f"   Identifier: {escape(person.identifier)}" if person.identifier else "")
 
 
-def _sheet_parts(task: Task, variant: Variant, person: Person | None = None) -> dict:
+def _sheet_parts(task: Task, variant: Variant) -> dict:
     return {
         "title": f"{task.title}: assignment {variant.student}",
-        "name": _name_line(person),
         "data": task.data(variant.mechanism) + [
             ("φ_t = ω_1", "crank angular velocity, constant, counter-clockwise", f"{variant.omega:g}", "1/s")],
         "positions": ", ".join(f"{p:g}°" for p in variant.positions_deg),
@@ -288,8 +339,8 @@ def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None,
     """The sheet as Markdown; ``image`` is the drawing's file name (omitted if None); ``person`` the student of
     the class list (None: a line to write the name on)."""
     task = _task(task)
-    parts = _sheet_parts(task, variant, person)
-    lines = [f"# {parts['title']}", "", _md(parts["name"]), ""]
+    parts = _sheet_parts(task, variant)
+    lines = [f"# {parts['title']}", "", _name_line(person, markdown_text), ""]
     if image:
         lines += [f"![The mechanism of {variant.student}]({image})", ""]
     lines += ["## Data", "", "| symbol | meaning | value | unit |", "|---|---|---|---|"]
@@ -340,13 +391,13 @@ def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None, per
     """The sheet as one self-contained HTML page (the drawing embedded as a base64 PNG); ``person`` as for
     :func:`sheet_markdown`."""
     task = _task(task)
-    parts = _sheet_parts(task, variant, person)
+    parts = _sheet_parts(task, variant)
     e = html.escape
     png = drawing_png(variant) if png is None else png
     out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
            f"<title>{e(parts['title'])}</title>", f"<style>{_CSS}</style>", "</head>", "<body>",
            f"<h1>{e(parts['title'])}</h1>",
-           f'<p class="name">{e(parts["name"]).replace("   ", " &nbsp; ")}</p>',
+           f'<p class="name">{_name_line(person, e).replace("   ", " &nbsp; ")}</p>',
            f'<img alt="The mechanism of {e(variant.student)}" src="data:image/png;base64,'
            f'{base64.b64encode(png).decode("ascii")}">',
            "<h2>Data</h2>", "<table><tr><th>symbol</th><th>meaning</th><th>value</th><th>unit</th></tr>"]
@@ -380,42 +431,63 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     ``people`` (one per variant, in order: :func:`mechanisms.course.roster.read_roster`) puts each student's
     name on the sheet and the columns ``name``, ``email``, ``identifier`` in the key and ``variants.json``.
 
+    What a person wrote is made safe for each file: escaped for HTML (:func:`html.escape`) and for Markdown
+    (:func:`~mechanisms.present.escape.markdown_text`) on the sheets; in the key and the answer forms every text
+    cell that a spreadsheet could take for a formula (``=``, ``+``, ``-``, ``@``, tab, carriage return first) is
+    written with a leading ``'`` (:func:`~mechanisms.present.escape.csv_cell`), numbers as numbers. Files are
+    named by the student ids only (``s01.html``), never by names, so nothing of a class list reaches a path.
+
     Returns
     -------
     dict
         ``{"sheets": [...], "forms": [...], "key": [path], "variants": [path]}``.
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``people`` is not one per variant, or two variants have the same student id (ignoring case).
+    CourseFileError
+        If the folder or a file cannot be written (the message names it and the cause).
     """
     task = _task(task)
     out = pathlib.Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     written: dict[str, list[pathlib.Path]] = {"sheets": [], "forms": [], "key": [], "variants": []}
     if people is not None and len(people) != len(variants):
         raise InvalidParameterError("people", len(people), f"one person per variant ({len(variants)})")
+    ids = [_require_student_id(v.student).casefold() for v in variants]
+    if len(set(ids)) != len(ids):     # s01 and S01 would be one file where names ignore case
+        twice = sorted({v.student for v in variants if ids.count(v.student.casefold()) > 1})
+        raise InvalidParameterError("variants", ", ".join(twice), "variants of different student ids (ignoring "
+                                    "case: each id names the student's files)")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as failure:
+        raise CourseFileError(f"output folder {out}: cannot be made ({failure.strerror or failure})") from None
     who = dict(zip((v.student for v in variants), people or ()))
     columns = list(KEY_COLUMNS) + [q.column for q in task.quantities]
     for variant in variants:
         png = drawing_png(variant)
-        (out / f"{variant.student}.png").write_bytes(png)
+        write_file(out / f"{variant.student}.png", png, "drawing")
         person = who.get(variant.student)
         for suffix, text in ((".html", sheet_html(task, variant, png, person)),
                              (".md", sheet_markdown(task, variant, f"{variant.student}.png", person))):
             path = out / f"{variant.student}{suffix}"
-            path.write_text(text, encoding="utf8")
+            write_file(path, text, "sheet")
             written["sheets"].append(path)
         form = out / f"{variant.student}-answers.csv"
         _write_csv(form, columns, [{"student": variant.student, "position": i + 1, "phi_deg": p}
-                                   for i, p in enumerate(variant.positions_deg)])
+                                   for i, p in enumerate(variant.positions_deg)], "answer form")
         written["forms"].append(form)
     key = out / "key.csv"
     rows = answer_key(task, variants)
     if who:      # who each student is, after the id: student,name,email,identifier,position,phi_deg,…
         rows = [{"student": row["student"], **_identity(who[row["student"]])} | row for row in rows]
         columns = [columns[0], *IDENTITY_COLUMNS, *columns[1:]]
-    _write_csv(key, columns, rows)
+    _write_csv(key, columns, rows, "answer key")
     written["key"].append(key)
     record = out / "variants.json"
     records = [v.record() | (_identity(who[v.student]) if who else {}) for v in variants]
-    record.write_text(json.dumps({"mechanism": task.name, "seed": seed, "variants": records}, indent=1,
-                                 ensure_ascii=False) + "\n", encoding="utf8")
+    write_file(record, json.dumps({"mechanism": task.name, "seed": seed, "variants": records}, indent=1,
+                                  ensure_ascii=False) + "\n", "variants record")
     written["variants"].append(record)
     return written

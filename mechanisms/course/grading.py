@@ -23,14 +23,14 @@ file that cannot be read when other answer files can.
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import pathlib
+import re
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
-from ..core.errors import MechanismError
+from ..present.escape import csv_cell_value
+from .csvtext import CourseFileError, csv_lines, header_key, read_csv_text
 from .roster import IDENTITY_COLUMNS, Person
 
 __all__ = [
@@ -99,7 +99,7 @@ PHI_TOLERANCE = 1e-6
 """How far (degrees) an answer file's φ may be from the key's and still name the same position."""
 
 
-class GradingError(MechanismError):
+class GradingError(CourseFileError):
     """A key or an answer file that cannot be graded; the message says what to fix."""
 
 
@@ -135,60 +135,95 @@ def difference(column: str, answer: float, key_value: float) -> float:
     return _wrap_degrees(diff) if kind_of(column) == "angle" else diff
 
 
+_DECIMAL_COMMA = re.compile(r"[+-]?\d*,\d+(?:[eE][+-]?\d+)?")
+"""A number written with a decimal comma: ``15,0``, ``-0,25``, ``,5``, ``1,5e3``."""
+_GROUPED = re.compile(r"[+-]?[1-9]\d{0,2},\d{3}")
+"""A number that a decimal comma and a thousands separator read differently: ``1,500`` is 1.5 or 1500."""
+_DECIMAL_POINT = re.compile(r"[+-]?\d*\.\d+(?:[eE][+-]?\d+)?")
+
+
 def parse_number(text: str, decimal_comma: bool = False) -> float:
-    """A cell's number; ``ValueError`` with a reason a student understands if it is not one."""
-    cleaned = text.strip()
-    if decimal_comma:
+    """A cell's number; ``ValueError`` with a reason a student understands if it is not one.
+
+    Parameters
+    ----------
+    text : str
+        The cell: a decimal point (``-0.25``, ``1e3``) or a decimal comma (``-0,25``, ``15,0``), the minus
+        sign ``-`` or ``−`` (U+2212, as a spreadsheet or a word processor may write it), spaces around.
+    decimal_comma : bool
+        True if the file writes decimal commas (it separates its cells with ``;``, or its numbers have decimal
+        commas and no decimal point): then ``1,500`` is 1.5. Otherwise ``1,500`` is refused as ambiguous (1.5
+        with a decimal comma, 1500 with a thousands separator); ``15,0`` and ``0,25`` are read either way.
+    """
+    cleaned = text.strip().replace("\u2212", "-")
+    shown = repr(text.strip())
+    if "," in cleaned:
+        if not _DECIMAL_COMMA.fullmatch(cleaned):
+            raise ValueError(f"{shown} is not a number (use a decimal point)")
+        if _GROUPED.fullmatch(cleaned) and not decimal_comma:
+            whole, part = cleaned.split(",")
+            raise ValueError(f"{shown} is ambiguous: {whole}.{part} with a decimal comma, {whole}{part} with a "
+                             "thousands separator (write it with a decimal point)")
         cleaned = cleaned.replace(",", ".")
     try:
-        value = float(cleaned)
+        value = float(cleaned) if cleaned.isascii() else math.nan
     except ValueError:
-        hint = " (use a decimal point)" if "," in cleaned and not decimal_comma else ""
-        raise ValueError(f"{text.strip()!r} is not a number{hint}") from None
+        raise ValueError(f"{shown} is not a number") from None
     if not math.isfinite(value):
-        raise ValueError(f"{text.strip()!r} is not a finite number")
+        raise ValueError(f"{shown} is not {'a finite number' if cleaned.isascii() else 'a number'}")
     return value
+
+
+def _writes_decimal_commas(texts: Iterable[str], delimiter: str) -> bool:
+    """Whether a file writes decimal commas: it separates its cells with ``;`` (a spreadsheet in a language that
+    writes decimal commas), or some of its cells have one and none a decimal point."""
+    if delimiter == ";":
+        return True
+    comma = point = False
+    for text in texts:
+        cleaned = text.strip().replace("\u2212", "-")
+        comma = comma or bool(_DECIMAL_COMMA.fullmatch(cleaned) and not _GROUPED.fullmatch(cleaned))
+        point = point or bool(_DECIMAL_POINT.fullmatch(cleaned))
+    return comma and not point
 
 
 # --- reading ---------------------------------------------------------------------------------------------
 
+_FIXED = {header_key(name): name for name in (*ID_COLUMNS, PHI, *IDENTITY_COLUMNS)}
+"""The columns of the key and of answer files that are not quantities, by their names reduced for matching:
+``Student``, ``STUDENT`` and `` student `` are ``student``, ``Phi deg`` is ``phi_deg``."""
+
+
 def _read_table(path: pathlib.Path, what: str) -> tuple[list[str], list[tuple[int, dict[str, str], bool]], bool]:
-    """Header, (line number, row, too many cells) triples and whether the file uses ``;`` with decimal commas."""
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise GradingError(f"{what} {path}: no such file") from None
-    except UnicodeDecodeError:
-        raise GradingError(f"{what} {path}: not a text file in UTF-8 (save it as CSV, UTF-8)") from None
-    except OSError as error:
-        raise GradingError(f"{what} {path}: cannot be read ({error.strerror})") from None
-    lines = text.splitlines()
-    if not lines or not lines[0].strip():
-        raise GradingError(f"{what} {path}: empty (the first line must name the columns)")
-    semicolon = ";" in lines[0] and "," not in lines[0]
-    reader = csv.reader(io.StringIO(text), delimiter=";" if semicolon else ",")
-    try:
-        header = [h.strip() for h in next(reader)]
-        body = []
-        for row in reader:
-            if not any(cell.strip() for cell in row):
-                continue
-            body.append((reader.line_num, row))
-    except csv.Error as error:
-        raise GradingError(f"{what} {path}: not a readable CSV file ({error})") from None
+    """Header, (line number, row, too many cells) triples and whether the file writes decimal commas.
+
+    The file is read by :func:`mechanisms.course.csvtext.read_csv_text` (any dialect a spreadsheet writes). The
+    names of the columns that are not quantities are matched whatever their case and spaces; a column without a
+    name (a spreadsheet's separator at the end of every line) is left out if it is empty.
+    """
+    table = read_csv_text(path, what, GradingError)
+    where = f"{what} {table.path}"
+    first, *records = table.rows
+    written = [cell.value.strip() for cell in first.cells]
+    for index, name in enumerate(written):
+        filled = next((r for r in records if r.value(index).strip()), None) if not name else None
+        if filled is not None:
+            raise GradingError(f"{where}, line {filled.line}: {filled.value(index).strip()!r} in column {index + 1}, "
+                               f"which has no name on line {first.line}")
+    named = [(index, _FIXED.get(header_key(name), name)) for index, name in enumerate(written) if name]
+    header = [name for _, name in named]
     if len(set(header)) != len(header):
         repeated = sorted({h for h in header if header.count(h) > 1})
-        raise GradingError(f"{what} {path}: the column(s) {', '.join(repeated)} appear more than once")
-    rows = []
-    for line, row in body:
-        overflow = len(row) > len(header) and any(cell.strip() for cell in row[len(header):])
-        rows.append((line, {h: (row[i] if i < len(row) else "") for i, h in enumerate(header)}, overflow))
-    return header, rows, semicolon
+        raise GradingError(f"{where}: the column(s) {', '.join(repeated)} appear more than once")
+    rows = [(r.line, {name: r.value(index) for index, name in named},
+             any(c.value.strip() for c in r.cells[len(first.cells):])) for r in records]
+    comma = _writes_decimal_commas((c.value for r in records for c in r.cells), table.delimiter)
+    return header, rows, comma
 
 
 def _overflow(line: int, cells: int, columns: int) -> str:
     return (f"line {line}: more cells than the {columns} columns (a decimal comma in a comma-separated file? "
-            "use a decimal point)")
+            "use a decimal point, or quote the cell)")
 
 
 @dataclass
@@ -218,7 +253,7 @@ class Key:
 
 def _position(text: str) -> int:
     value = text.strip()
-    if not value.isdigit() or int(value) < 1:
+    if not (value.isascii() and value.isdigit() and len(value) <= 9) or int(value) < 1:
         raise ValueError(f"position {text.strip()!r} is not a whole number ≥ 1")
     return int(value)
 
@@ -260,7 +295,7 @@ def read_key(path: str | pathlib.Path) -> Key:
         phi[student, position] = angle
         values[student, position] = numbers
         if identity:
-            person = Person(**{c: " ".join(row[c].split()) for c in identity})
+            person = Person(**{c: " ".join(csv_cell_value(row[c].strip()).split()) for c in identity})
             if people.setdefault(student, person) != person:
                 raise GradingError(f"{where}: student {student} is {person.label!r} here but "
                                    f"{people[student].label!r} on an earlier line")
@@ -293,7 +328,11 @@ def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None
     header, rows, comma = _read_table(path, "answer file")
     missing = [c for c in ID_COLUMNS if c not in header]
     identity = IDENTITY_COLUMNS if key.people else ()      # the key's own columns, when it has a class list
-    unknown = [c for c in header if c not in (*ID_COLUMNS, PHI, *identity, *key.quantities)]
+    # a quantity's column whatever its case (b.S is B.s), unless the key has two names that differ only in case
+    fold = str.casefold if len({q.casefold() for q in key.quantities}) == len(key.quantities) else str
+    by_fold = {fold(q): q for q in key.quantities}
+    quantity = {h: by_fold[fold(h)] for h in header if h not in (*ID_COLUMNS, PHI, *identity) and fold(h) in by_fold}
+    unknown = [c for c in header if c not in (*ID_COLUMNS, PHI, *identity) and c not in quantity]
     if missing or unknown:
         parts = []
         if missing:
@@ -338,7 +377,7 @@ def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None
             answers.problems.append(f"{where}: a second row for {student} position {position}; the first one "
                                     "is graded, this one ignored")
             continue
-        answers.cells[student, position] = {c: row[c] for c in key.quantities if c in row}
+        answers.cells[student, position] = {q: row[h] for h, q in quantity.items()}
         answers.decimal_comma[student, position] = comma
     return answers
 
@@ -437,15 +476,10 @@ class Report:
 
     def csv(self) -> str:
         """Every mark as CSV: student, position, phi_deg, quantity, key, answer, difference, tolerance, status, note."""
-        out = io.StringIO()
-        writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(["student", "position", "phi_deg", "quantity", "key", "answer", "difference", "tolerance",
-                         "status", "note"])
-        for m in self.marks:
-            writer.writerow([m.student, m.position, m.phi_deg, m.quantity, repr(m.key),
-                             "" if m.answer is None else repr(m.answer),
-                             "" if m.difference is None else repr(m.difference), repr(m.tolerance), m.status, m.note])
-        return out.getvalue()
+        header = ("student", "position", "phi_deg", "quantity", "key", "answer", "difference", "tolerance", "status",
+                  "note")
+        return csv_lines([header, *((m.student, m.position, m.phi_deg, m.quantity, m.key, m.answer, m.difference,
+                                     m.tolerance, m.status, m.note) for m in self.marks)])
 
 
 def grade(key: Key, answers: Answers, relative: float = DEFAULT_RELATIVE) -> Report:

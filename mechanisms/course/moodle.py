@@ -12,19 +12,23 @@ it finds each student by ``Identifier`` and reads ``Grade``, ``Feedback comments
 :func:`fill_worksheet` writes each graded student's grade (``Maximum grade`` × right answers / answers
 asked, two decimals) and a feedback comment into that student's row, found by identifier or else by
 e-mail (from the key made with ``assign --roster``), and leaves every other cell, row and byte of the file
-as it was: its byte-order mark, separator, quoting and line endings. :func:`grades_csv` writes the same
-grades as a plain CSV for any other platform (:data:`GRADES_COLUMNS`).
+as it was: its encoding, byte-order mark, separator, quoting and line endings. :func:`grades_csv` writes the
+same grades as a plain CSV for any other platform (:data:`GRADES_COLUMNS`).
+
+Spreadsheets open these files, so every text cell written (the student id, identifier, name, e-mail and
+feedback comment) goes through :func:`mechanisms.present.escape.csv_cell`: one that could start a formula
+(``=``, ``+``, ``-``, ``@``, a tab or a carriage return first) gets a leading ``'``. The grade is a number and is
+written as one. (The feedback comments this module writes start with a digit, so they never need it.)
 """
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import pathlib
 from dataclasses import dataclass
 
-from .csvtext import CourseFileError, CsvText, header_key, read_csv_text, replace_cells
+from ..present.escape import csv_cell
+from .csvtext import CourseFileError, CsvText, csv_lines, header_key, read_csv_text, replace_cells, write_file
 from .grading import Report
 from .roster import Person
 
@@ -40,7 +44,7 @@ their case; only ``Grade``, ``Feedback comments`` and ``Identifier`` or ``Email 
 
 GRADES_COLUMNS = ("student", "identifier", "name", "email", "grade", "feedback")
 """The plain grades CSV: the key's student id, who the student is (from the class list), the grade in
-percent (0–100, two decimals) and the feedback comment."""
+percent (0–100, two decimals) and the feedback comment (text cells spreadsheet-safe, see the module's notes)."""
 
 _GRADE, _MAXIMUM, _FEEDBACK, _IDENTIFIER, _EMAIL, _SCALE = (header_key(n) for n in (
     "Grade", "Maximum grade", "Feedback comments", "Identifier", "Email address", "Scale"))
@@ -104,6 +108,8 @@ def _columns(table: CsvText, where: str) -> tuple[dict[str, int], int]:
     found: dict[str, int] = {}
     for index, cell in enumerate(header.cells):
         key = header_key(cell.value)
+        if not key:        # a column without a name (a spreadsheet's trailing separator) is left as it is
+            continue
         if key in found:
             raise WorksheetError(f"{where}, line {header.line}: the column {cell.value.strip()!r} appears twice")
         found[key] = index
@@ -200,17 +206,12 @@ def fill_worksheet(report: Report, worksheet: str | pathlib.Path, out: str | pat
         maximum = (_maximum(record.value(columns[_MAXIMUM]), f"{where}, line {record.line}")
                    if _MAXIMUM in columns else 100.0)
         values[index, columns[_GRADE]] = f"{maximum * grade.fraction:.2f}"
-        values[index, columns[_FEEDBACK]] = grade.feedback
+        values[index, columns[_FEEDBACK]] = csv_cell(grade.feedback)
         filled[grade.student] = index
     if missing:
         raise WorksheetError(f"{where}: no row for {len(missing)} student(s) of the key {report.key.path.name}: "
                              + "; ".join(missing) + " (is it the worksheet of this class and assignment?)")
-    data = replace_cells(table, values)
-    out = pathlib.Path(out)
-    try:
-        out.write_bytes(data)
-    except OSError as error:
-        raise WorksheetError(f"filled worksheet {out}: cannot be written ({error.strerror})") from None
+    out = write_file(out, replace_cells(table, values), "filled worksheet", WorksheetError)
     untouched = [r.line for i, r in enumerate(table.records)
                  if i > header_index and not r.blank and i not in filled.values()]
     return WorksheetResult(out, {s: table.records[i].line for s, i in filled.items()}, untouched)
@@ -218,11 +219,6 @@ def fill_worksheet(report: Report, worksheet: str | pathlib.Path, out: str | pat
 
 def grades_csv(report: Report) -> str:
     """The grades as a plain CSV (:data:`GRADES_COLUMNS`; grade in percent), one row per student of the key."""
-    out = io.StringIO()
-    writer = csv.writer(out, lineterminator="\n")
-    writer.writerow(GRADES_COLUMNS)
-    for grade in student_grades(report):
-        person = grade.person or Person()
-        writer.writerow([grade.student, person.identifier, person.name, person.email,
-                         f"{100 * grade.fraction:.2f}", grade.feedback])
-    return out.getvalue()
+    rows = [(g.student, (g.person or Person()).identifier, (g.person or Person()).name, (g.person or Person()).email,
+             f"{100 * g.fraction:.2f}", g.feedback) for g in student_grades(report)]
+    return csv_lines([GRADES_COLUMNS, *rows])

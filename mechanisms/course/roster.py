@@ -7,15 +7,19 @@ e-mail and identifier, so that ``check`` can write the grades into a learning pl
 The columns are recognised by name, whatever their case, spaces and hyphens (:data:`COLUMNS`); other
 columns are ignored. Moodle's own files can serve as the list: its assignment's grading worksheet
 (``Identifier``, ``Full name``, ``Email address``), its participants' or gradebook's export (``First name``,
-``Last name`` or ``Surname``, ``ID number``, ``Email address``). The file is UTF-8 (with or without a
-byte-order mark), its cells separated by commas, semicolons or tabs, quoted or not.
+``Last name`` or ``Surname``, ``ID number``, ``Email address``). The file may be in any of the dialects
+spreadsheets write (:mod:`mechanisms.course.csvtext`). A cell that a spreadsheet-safe file holds with a leading
+``'`` (:func:`mechanisms.present.escape.csv_cell`: ``'=x``) is read without it, so the grades CSV that
+``check --grades`` writes is a class list too.
 """
 
 from __future__ import annotations
 
 import pathlib
+import unicodedata
 from dataclasses import dataclass
 
+from ..present.escape import csv_cell_value
 from .csvtext import CourseFileError, header_key, read_csv_text
 
 __all__ = ["Person", "RosterError", "COLUMNS", "IDENTITY_COLUMNS", "read_roster"]
@@ -91,7 +95,8 @@ def read_roster(path: str | pathlib.Path) -> list[Person]:
     ------
     RosterError
         If the file cannot be read, has no column that names a student, has a row with none of name, e-mail
-        and identifier, more cells than columns, or two rows with the same identifier or e-mail.
+        and identifier, with a control character in one of them, with more cells than columns, or two rows with
+        the same identifier or e-mail.
     """
     table = read_csv_text(path, "class list", RosterError)
     where = f"class list {table.path}"
@@ -103,9 +108,13 @@ def read_roster(path: str | pathlib.Path) -> list[Person]:
         if len(row.cells) > len(header.cells) and any(c.value.strip() for c in row.cells[len(header.cells):]):
             raise RosterError(f"{where}, line {row.line}: more cells than the {len(header.cells)} columns (a "
                               f"separator inside a name? quote the cell)")
-        value = {field: " ".join(row.value(index).split()) for field, index in columns.items()}
+        value = {field: " ".join(csv_cell_value(row.value(index).strip()).split()) for field, index in columns.items()}
         name = value.get("name") or " ".join(filter(None, (value.get("first name"), value.get("last name"))))
         person = Person(name, value.get("email", ""), value.get("identifier", ""))
+        control = next((c for c in "".join(vars(person).values()) if unicodedata.category(c) == "Cc"), None)
+        if control is not None:
+            raise RosterError(f"{where}, line {row.line}: a control character (U+{ord(control):04X}) in a name, "
+                              "e-mail or identifier")
         if not person.label:
             raise RosterError(f"{where}, line {row.line}: no name, e-mail or identifier")
         for field in ("identifier", "email"):
