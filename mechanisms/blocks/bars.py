@@ -9,7 +9,10 @@ and the k joints of the group have 2k coordinates q for 2k bars. Newton's method
 ``Φ_q Δq = −Φ`` with the Jacobian Φ_q (row of a bar: ``(r_a − r_b)/L`` in the columns of a, its
 negative in those of b). The assembly mode is the one of the user's guess: the solution is
 continued from the guess's crank angle in steps of at most 2°, and every requested position
-starts from the nearest step, so a position is never taken from another mode.
+starts from the nearest step, so a position is never taken from another mode. A crank angle is a
+crank position: 370° is solved as 10°, each position at its angle nearest the guess's (within half a
+turn of it, or a turn further round where the continuation reaches only that side), so the work never
+grows with the size of the angles asked for.
 
 Velocities and accelerations are linear: differentiating Φ along the motion,
 
@@ -26,6 +29,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from ..core.angles import wrap_angle
 from ..core.errors import AssemblyError
 from ..core.motion import PointMotion
 
@@ -114,6 +118,35 @@ def _continuation_grid(start: float, low: float, high: float) -> np.ndarray:
     return np.concatenate(([start], upward, downward))
 
 
+def _continuation(known_at: Callable[[np.ndarray], Mapping[str, np.ndarray]], index: Mapping[str, int],
+                  bars: Sequence[tuple[str, str, float]], scale: float, joints: Sequence[str],
+                  guess: Sequence[complex], guess_angle: float, low: float,
+                  high: float) -> tuple[np.ndarray, np.ndarray]:
+    """The group continued from the guess down to ``low`` and up to ``high`` (rad) in steps ≤ CONTINUATION_STEP,
+    each way until Newton's method fails: the crank angles reached and the joints there (complex, m)."""
+    grid = _continuation_grid(guess_angle, low, high)
+    grid_known = known_at(grid)
+    solved = np.empty((grid.size, len(joints)), dtype=complex)
+    ok = np.zeros(grid.size, dtype=bool)
+    up = int(np.sum(grid > guess_angle)) if grid.size > 1 else 0
+    start = np.asarray(guess, dtype=complex)
+    for path in (range(0, up + 1), [0, *range(up + 1, grid.size)]):
+        current = start
+        for i in path:
+            here = {name: np.atleast_1d(values[i:i + 1]) for name, values in grid_known.items()}
+            x, converged = _newton(current[None, :], here, index, bars, scale)
+            if not converged[0]:
+                break
+            solved[i], ok[i] = x[0], True
+            current = x[0]
+        if not ok[0]:
+            break
+    if not ok[0]:
+        raise AssemblyError(f"the group of joints {', '.join(joints)} does not assemble near the guess",
+                            angles=[guess_angle])
+    return grid[ok], solved[ok]
+
+
 def solve_bars(known_at: Callable[[np.ndarray], Mapping[str, np.ndarray]], known: Mapping[str, PointMotion],
                joints: Sequence[str], bars: Sequence[tuple[str, str, float]], guess: Sequence[complex],
                guess_angle: float, phi: np.ndarray, order: int) -> BarGroup:
@@ -157,33 +190,27 @@ def solve_bars(known_at: Callable[[np.ndarray], Mapping[str, np.ndarray]], known
     if n == 0:
         empty = np.zeros(phi.shape, dtype=complex)
         return BarGroup({j: PointMotion(empty, *([empty] * order)) for j in joints}, np.zeros(phi.shape, bool))
-    # 1. continuation along a grid of crank angles from the guess
-    grid = _continuation_grid(guess_angle, float(flat.min()), float(flat.max()))
-    grid_known = known_at(grid)
-    solved = np.empty((grid.size, len(joints)), dtype=complex)
-    ok = np.zeros(grid.size, dtype=bool)
-    up = int(np.sum(grid > guess_angle)) if grid.size > 1 else 0
-    start = np.asarray(guess, dtype=complex)
-    for path in (range(0, up + 1), [0, *range(up + 1, grid.size)]):
-        current = start
-        for i in path:
-            here = {name: np.atleast_1d(values[i:i + 1]) for name, values in grid_known.items()}
-            x, converged = _newton(current[None, :], here, index, bars, scale)
-            if not converged[0]:
-                break
-            solved[i], ok[i] = x[0], True
-            current = x[0]
-        if not ok[0]:
-            break
-    if not ok[0]:
-        raise AssemblyError(f"the group of joints {', '.join(joints)} does not assemble near the guess",
-                            angles=[guess_angle])
+    # 1. each crank position at its angle nearest the guess's, in (guess − π, guess + π]: 370° is the crank
+    #    position of 10°, and the continuation never walks a turn to reach it
+    reduced = guess_angle + wrap_angle(flat - guess_angle)
+    low, high = float(reduced.min()), float(reduced.max())
+    reached, solved = _continuation(known_at, index, bars, scale, joints, guess, guess_angle, low, high)
+    # a position beyond the continuation's reach on one side may be reached on the other, a turn away
+    # (a group that assembles over [−17°, 213°] from a guess at 0° has 200° there, not at −160°)
+    beyond = (reduced < reached.min() - CONTINUATION_STEP) | (reduced > reached.max() + CONTINUATION_STEP)
+    if beyond.any():
+        other = np.where(reduced > guess_angle, reduced - 2.0 * math.pi, reduced + 2.0 * math.pi)
+        wider_low, wider_high = min(low, float(other[beyond].min())), max(high, float(other[beyond].max()))
+        if (wider_low < low and reached.min() <= low + 1e-12) or (wider_high > high and reached.max() >= high - 1e-12):
+            reached, solved = _continuation(known_at, index, bars, scale, joints, guess, guess_angle,
+                                            wider_low, wider_high)
+            inside = (other >= reached.min() - CONTINUATION_STEP) & (other <= reached.max() + CONTINUATION_STEP)
+            reduced = np.where(beyond & inside, other, reduced)
     # 2. each position from the nearest continued step
-    reached = grid[ok]
-    nearest = np.abs(flat[:, None] - reached[None, :]).argmin(axis=1)
-    too_far = np.abs(flat - reached[nearest]) > CONTINUATION_STEP
+    nearest = np.abs(reduced[:, None] - reached[None, :]).argmin(axis=1)
+    too_far = np.abs(reduced - reached[nearest]) > CONTINUATION_STEP
     where_known = {name: np.asarray(m.value).reshape(-1) for name, m in known.items()}
-    x, converged = _newton(solved[ok][nearest], where_known, index, bars, scale)
+    x, converged = _newton(solved[nearest], where_known, index, bars, scale)
     failed = too_far | ~converged
     if failed.any():
         raise AssemblyError(f"the group of joints {', '.join(joints)} does not assemble (Newton's method found no "

@@ -21,6 +21,8 @@ its unit vector is ``ê = exp(iθ)``, with ``ê_t = iθ_t ê`` and ``ê_tt = (i�
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 from typing import Any
@@ -40,10 +42,20 @@ __all__ = [
     "distance_to_line",
     "circle_on_line",
     "angle_from_distance",
+    "parallel_directions",
 ]
 
 # Lines closer to parallel than this (|sin| of the angle between them) are reported as singular.
 _PARALLEL = 1e-12
+
+
+def parallel_directions(first_angle: float, second_angle: float) -> bool:
+    """True if two directions (rad) are parallel or opposite to within round-off: ``|sin(β₂ − β₁)| ≤ 1e-12``.
+
+    Two lines of these directions have no single intersection (:func:`line_intersection` marks such
+    positions singular); a linkage whose two guides on one link are parallel has no position at all.
+    """
+    return abs(math.sin(second_angle - first_angle)) <= _PARALLEL
 
 
 def _as_point(point, like, order: int) -> PointMotion:

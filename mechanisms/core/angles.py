@@ -1,7 +1,10 @@
 """Layer 1: angles — one wrapping convention, the direction of a vector, the unit vector.
 
 Every angle the package reduces is reduced to (−π, π] by :func:`wrap_angle` (degrees: (−180°, 180°]
-by :func:`wrap_degrees`); nothing else in the package wraps angles its own way.
+by :func:`wrap_degrees`, or :func:`reduce_degrees`, which also refuses what is not a finite number);
+nothing else in the package wraps angles its own way. An angle a person gives in degrees (a linkage
+file, an option of the command line) is reduced in degrees, exactly, *before* it becomes radians:
+``math.radians(1e20)`` is a number of radians whose reduction has nothing to do with 1e20° mod 360°.
 
 A speed trick lives here beside the plain form the book shows (chapter 9 and the appendix on speed
 measure what it buys; the tests compare the two):
@@ -12,13 +15,17 @@ measure what it buys; the tests compare the two):
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .errors import InvalidParameterError
+
 __all__ = [
     "wrap_angle",
     "wrap_degrees",
+    "reduce_degrees",
     "angle_of",
     "unit_vector",
     "unit_vector_fast",
@@ -61,6 +68,55 @@ def wrap_degrees(angle: ArrayLike) -> np.ndarray:
     reduced = np.where(reduced > 180.0, reduced - 360.0, reduced)    # exact (Sterbenz)
     reduced = np.where(reduced <= -180.0, reduced + 360.0, reduced)
     return np.where(inside, a, reduced)
+
+
+def reduce_degrees(angle: object, name: str = "angle") -> float | np.ndarray:
+    """An angle given in degrees reduced exactly to (−180°, 180°], the convention of :func:`wrap_angle`.
+
+    Parameters
+    ----------
+    angle : float or array_like of float
+        Angles (°), finite, of any size: 1e20° is reduced as exactly as 10°, and an integer (a Python
+        ``int`` of any size, as a TOML file gives it) as the integer it is, not as its nearest double.
+    name : str
+        The parameter's name, for the error.
+
+    Returns
+    -------
+    float or ndarray
+        A Python float for a scalar (a number, or a 0-d array), else an array of the same shape.
+        ``fmod(x, 360)`` is exact for every double, and so is the shift by 360° into the interval
+        (Sterbenz), so the result is the exact remainder; radians are taken only after it
+        (``math.radians`` of the reduced value), so no work or memory grows with the angle's size.
+
+    Raises
+    ------
+    InvalidParameterError
+        If the angle is not a real number (a string, a bool, a complex) or is not finite (nan, ±inf).
+    """
+    requirement = "a finite angle in degrees"
+    if isinstance(angle, (bool, np.bool_, str, bytes)):
+        raise InvalidParameterError(name, angle, requirement)
+    if isinstance(angle, (int, np.integer)):     # an integer (of any size) by the integers' own remainder
+        remainder = int(angle) % 360
+        return float(remainder - 360 if remainder > 180 else remainder)
+    try:
+        # a Python int beyond 2**64 would make an object array: take its float (exact to rounding)
+        a = np.asarray(float(angle) if isinstance(angle, numbers.Real) else angle)
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidParameterError(name, angle, requirement) from None
+    if a.dtype.kind not in "iuf":
+        raise InvalidParameterError(name, angle, requirement)
+    try:
+        a = a.astype(float)
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidParameterError(name, angle, requirement) from None
+    if not np.all(np.isfinite(a)):
+        raise InvalidParameterError(name, angle, requirement)
+    reduced = wrap_degrees(a)
+    if reduced.ndim == 0:
+        return float(reduced)
+    return reduced
 
 
 def angle_of(z: ArrayLike) -> np.ndarray:

@@ -30,7 +30,7 @@ from ..blocks.circle_circle import hinge
 from ..blocks.circle_line import slider_on_line
 from ..blocks.crank import crank_angle, crank_pin
 from ..blocks.lever_block import lever_block
-from ..blocks.lines import circle_on_line, line_intersection
+from ..blocks.lines import LineIntersection, circle_on_line, line_intersection, parallel_directions
 from ..core.errors import AssemblyError, MechanismError, StructureError, describe_range
 from ..core.motion import AngleMotion, Motion, PointMotion, fixed_point, point_on_link, polar
 from ..core.validate import require_branch, require_finite, require_length
@@ -45,6 +45,18 @@ FRAME = "frame"
 
 _SAMPLES = 3600
 """Crank positions sampled to find where a linkage assembles (0.1° apart)."""
+
+
+class _GroupError(StructureError):
+    """A group that cannot be, whatever the crank angle: the message, the group and its field at fault.
+
+    The linkage file's reader turns the group and the field into the file's place and key
+    (``[[dyad]] #2 ('K'): key 'guides'``); for a linkage made in Python the message names the group.
+    """
+
+    def __init__(self, message: str, key: str | None = None, group: Any = None, cause: str | None = None):
+        super().__init__(message)
+        self.key, self.group, self.cause = key, group, message if cause is None else cause
 
 
 @dataclass(frozen=True)
@@ -127,7 +139,10 @@ class Linkage(Mechanism):
     ------
     StructureError
         A joint or link no group finds, a cycle, a name used twice, two cranks, a point placed on
-        joints of different links, a group of the wrong number of bars (degrees of freedom ≠ 1).
+        joints of different links, a group of the wrong number of bars (degrees of freedom ≠ 1), a name
+        that is not a non-empty string; a group with no position at any crank angle: an RRR between two
+        joints that are one point, an RPR whose block is its pivot, a PRP whose two guides on one link are
+        parallel, an RPP whose slot is parallel to its guide.
     InvalidParameterError
         A length that is not finite and > 0, a branch that is not ±1, a position that is not finite.
 
@@ -185,6 +200,8 @@ class Linkage(Mechanism):
                                  f"not {len(cranks)}")
         found: dict[str, str] = {j: "the frame" for j in self.frame}
         links = {FRAME}
+        for group in groups:
+            _check_names(group)
         for group in groups:
             for joint in group.finds:
                 if joint in found:
@@ -245,7 +262,15 @@ class Linkage(Mechanism):
         except MechanismError as error:
             if isinstance(error, StructureError) and str(error).startswith(self.name + ":"):
                 raise
-            raise StructureError(f"{self.name}: {where}: {error}") from None
+            key = error.key if isinstance(error, _GroupError) else getattr(error, "name", None)
+            raise _GroupError(f"{self.name}: {where}: {error}", key if isinstance(key, str) else None,
+                              group, str(error)) from None
+
+    def _coincide(self, first: str, second: str) -> bool:
+        """True if the joints ``first`` and ``second`` are one point of one link (the frame's included) at every
+        crank angle: a group that needs them as two points is undefined."""
+        return first == second or any(first in item.local and second in item.local
+                                      and item.local[first] == item.local[second] for item in self._links.values())
 
     def _add_checked(self, group: Group) -> None:
         if isinstance(group, Crank):
@@ -258,6 +283,9 @@ class Linkage(Mechanism):
             first = require_length("first_length", group.first_length)
             second = require_length("second_length", group.second_length)
             require_branch(group.branch)
+            if self._coincide(group.first, group.second):
+                raise _GroupError(f"the known joints {group.first!r} and {group.second!r} are one point: the "
+                                  f"joint {group.joint!r} could be anywhere on a circle about it", "from")
             pairs = [Pair("R", self._carrier(group.first), group.first_link, group.first),
                      Pair("R", group.first_link, group.second_link, group.joint),
                      Pair("R", self._carrier(group.second), group.second_link, group.second)]
@@ -275,6 +303,9 @@ class Linkage(Mechanism):
             self._new_link(group.slider, group.joint, {group.joint: 0j}, turns=line.link != FRAME, role="slider")
             self._pairs += pairs
         elif isinstance(group, RPR):
+            if self._coincide(group.block, group.pivot):
+                raise _GroupError(f"the block {group.block!r} and the pivot {group.pivot!r} are one point: the "
+                                  "lever through them has no direction", "pivot")
             pairs = [Pair("R", self._carrier(group.block), group.slider, group.block),
                      Pair("P", group.slider, group.lever, group.block),
                      Pair("R", self._carrier(group.pivot), group.lever, group.pivot)]
@@ -286,6 +317,9 @@ class Linkage(Mechanism):
             self._pairs += pairs
         elif isinstance(group, PRP):
             one, two = self._line(group.first_guide, "first guide"), self._line(group.second_guide, "second guide")
+            if one.link == two.link and parallel_directions(one.angle, two.angle):
+                raise _GroupError(f"its two guides (both on {one.link!r}) are parallel: they never cross at one "
+                                  f"point, so the joint {group.joint!r} has no position", "guides")
             self._pairs += [Pair("P", one.link, group.first_slider, group.joint),
                             Pair("R", group.first_slider, group.second_slider, group.joint),
                             Pair("P", group.second_slider, two.link, group.joint)]
@@ -295,7 +329,9 @@ class Linkage(Mechanism):
                            role="slider")
         elif isinstance(group, RPP):
             guide = self._line(group.guide, "guide")
-            require_finite("slot_angle", group.slot_angle)
+            if parallel_directions(0.0, require_finite("slot_angle", group.slot_angle)):
+                raise _GroupError("the slot is parallel to the guide (slot angle 0° or 180°): the yoke's "
+                                  "position along the guide is free", "slot_angle")
             self._pairs += [Pair("R", self._carrier(group.block), group.slider, group.block),
                             Pair("P", group.slider, group.yoke, group.block),
                             Pair("P", group.yoke, guide.link, group.joint)]
@@ -532,7 +568,7 @@ class Linkage(Mechanism):
         elif isinstance(group, PRP):
             first = self._line_motion(group.first_guide, state)
             second = self._line_motion(group.second_guide, state)
-            crossing = line_intersection(*first, *second, angles=phi)
+            crossing = _broadcast(line_intersection(*first, *second, angles=phi), np.shape(phi))
             points[group.joint] = crossing.point
             state.sliders[group.first_slider] = crossing.along_first
             state.sliders[group.second_slider] = crossing.along_second
@@ -547,7 +583,8 @@ class Linkage(Mechanism):
                                                         direction.acceleration)
             else:
                 slot = direction + group.slot_angle
-            crossing = line_intersection(points[group.block], slot, through, direction, angles=phi)
+            crossing = _broadcast(line_intersection(points[group.block], slot, through, direction, angles=phi),
+                                  np.shape(phi))
             points[group.joint] = crossing.point
             state.singular = state.singular | crossing.singular
             state.sliders[group.slider] = crossing.along_first * -1.0     # the block from the yoke's point
@@ -687,14 +724,20 @@ class Linkage(Mechanism):
         return 0.0
 
     def preserved_distances(self) -> dict[tuple[str, str], float]:
+        """The distances that stay constant: on each moving link, from each of its joints and points to the
+        link's two defining joints (its pole and the first joint apart from it), which fixes the rigid body;
+        2N distances for N points of a link, not the N(N − 1)/2 of every pair."""
         distances = {}
         for name, item in self._links.items():
             if name == FRAME:
                 continue
             joints = list(item.local)
-            for i, a in enumerate(joints):
-                for b in joints[i + 1:]:
-                    distances[(a, b)] = abs(item.local[a] - item.local[b])
+            first = joints[0]
+            second = next((j for j in joints[1:] if item.local[j] != item.local[first]), None)
+            for other in joints[1:]:
+                for base in (first, second):
+                    if base is not None and base != other and (other, base) not in distances:
+                        distances[(base, other)] = abs(item.local[base] - item.local[other])
         return distances
 
     def coordinates(self, solution: Solution) -> list[Motion]:
@@ -859,3 +902,23 @@ def _needs_links(group: Group) -> tuple[str, ...]:
     if isinstance(group, LinkPoint) and group.axis is None:
         links += (group.link,)
     return links
+
+
+def _broadcast(crossing: LineIntersection, shape: tuple[int, ...]) -> LineIntersection:
+    """An intersection of two lines at every crank position: two fixed lines cross at one fixed point, which
+    :func:`~mechanisms.blocks.lines.line_intersection` gives as a 0-d value."""
+    def spread(motion: Any) -> Any:
+        return type(motion)(*(None if x is None else np.broadcast_to(x, shape) for x in motion.derivatives()))
+    return LineIntersection(spread(crossing.point), spread(crossing.along_first), spread(crossing.along_second),
+                            np.broadcast_to(crossing.singular, shape))
+
+
+def _check_names(group: Group) -> None:
+    """Every joint and link a group names is a name: a non-empty string."""
+    named = [*group.finds, *group.needs, *group.links, *(line.link for line in _guides(group))]
+    if isinstance(group, LinkPoint) and group.axis is None:
+        named.append(group.link)
+    for name in named:
+        if not isinstance(name, str) or not name.strip():
+            raise StructureError(f"{type(group).__name__}: a joint or link is named {name!r}: names are "
+                                 "non-empty strings")

@@ -76,12 +76,15 @@ Lengths in m, angles in degrees. The keys (a contract: they keep their meaning):
     inertia = 0.02              # kg m^2, about the centre of mass
 
 Groups may come in any order that respects what they need. Every error names the file, the
-group (``[[dyad]] #2``) or key, and the cause.
+group (``[[dyad]] #2``) or key, and the cause. Angles in degrees are reduced exactly to (−180°, 180°]
+(:func:`~mechanisms.core.angles.reduce_degrees`) before they become radians, so 1e20° is as good an
+angle as 280°.
 """
 
 from __future__ import annotations
 
 import math
+import os
 import tomllib
 from importlib import resources
 from pathlib import Path
@@ -89,8 +92,9 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from ..core.errors import MechanismError, StructureError
-from .composed import Linkage
+from ..core.angles import reduce_degrees
+from ..core.errors import InvalidParameterError, MechanismError, StructureError
+from .composed import Linkage, _GroupError
 from .groups import PRP, RPP, RPR, RRP, RRR, Crank, Group, Line, LinkPoint, Triad
 
 __all__ = ["load_linkage", "linkage_from_dict", "example_files", "example_file", "FORMAT_SUMMARY"]
@@ -109,6 +113,9 @@ A linkage file (TOML; lengths in m, angles in degrees):
 Every group may name its links: links = [...]. The full format: the book's multi-loop chapter."""
 
 _TOP = {"name", "frame", "crank", "dyad", "point", "triad", "mass", "description"}
+_FILE_KEYS = {"first_length": "lengths", "second_length": "lengths", "first": "from", "second": "from",
+              "first guide": "guides", "second guide": "guides", "slot_angle": "slot_angle_deg", "bar": "bars"}
+"""The key of the file for a field of a group that :class:`~mechanisms.linkages.composed.Linkage` names."""
 _DYAD_KEYS = {
     "RRR": ({"type", "joint", "from", "lengths"}, {"branch", "links"}),
     "RRP": ({"type", "joint", "from", "length", "guide"}, {"branch", "links"}),
@@ -134,7 +141,7 @@ class _Where:
 
     def keys(self, table: Mapping[str, Any], required: set[str], optional: set[str]) -> None:
         missing = sorted(required - set(table))
-        unknown = sorted(set(table) - required - optional)
+        unknown = sorted(set(table) - required - optional, key=str)
         if missing:
             raise self.error(f"missing key{'s' if len(missing) > 1 else ''} {', '.join(map(repr, missing))}"
                              + (f" (and unknown {', '.join(map(repr, unknown))}: misspelt?)" if unknown else ""))
@@ -157,10 +164,22 @@ class _Where:
             raise self.error(f"names the same joint twice: {value!r}", key)
         return tuple(value)
 
+    def angle(self, value: Any, key: str) -> float:
+        """An angle in degrees → radians, reduced in degrees first (exactly, whatever its size)."""
+        try:
+            if not isinstance(value, int) or isinstance(value, bool):       # an int is reduced as an integer
+                value = self.number(value, key, "a finite angle in degrees")
+            return math.radians(float(reduce_degrees(value, key)))
+        except InvalidParameterError as error:
+            raise self.error(f"must be a finite angle in degrees: got {error.value!r}", key) from None
+
     def number(self, value: Any, key: str, what: str = "a finite number") -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise self.error(f"must be {what}: got {value!r}", key)
-        value = float(value)
+        try:
+            value = float(value)
+        except OverflowError:                  # an int beyond the largest double
+            raise self.error(f"must be {what}: got {value!r}", key) from None
         if not math.isfinite(value):
             raise self.error(f"must be {what}: got {value!r}", key)
         return value
@@ -191,7 +210,8 @@ class _Where:
         return self.names(table, "links", len(defaults))
 
 
-def _guide(where: _Where, value: Any, key: str, local: Callable[[str, str], tuple[str, complex, float]]) -> Line:
+def _guide(where: _Where, value: Any, key: str,
+           local: Callable[[str, str], tuple[str, complex, float | None]]) -> Line:
     """A guide table → Line: a fixed one through a point, or one through a joint of a moving link."""
     if not isinstance(value, dict):
         raise where.error(f"must be a table {{through = [x, y], angle_deg = …}}: got {value!r}", key)
@@ -199,7 +219,7 @@ def _guide(where: _Where, value: Any, key: str, local: Callable[[str, str], tupl
     if extra or "through" not in value:
         raise where.error("a guide takes through = [x, y] or a joint, toward = a joint (for a moving link) and "
                           f"angle_deg: got {value!r}", key)
-    angle = math.radians(where.number(value.get("angle_deg", 0.0), key + ".angle_deg"))
+    angle = where.angle(value.get("angle_deg", 0.0), key + ".angle_deg")
     through = value["through"]
     if isinstance(through, list):
         if "toward" in value:
@@ -211,9 +231,15 @@ def _guide(where: _Where, value: Any, key: str, local: Callable[[str, str], tupl
     if toward is None:
         raise where.error("a guide through a joint needs 'toward', a second joint of the same link "
                           "(the guide's direction is angle_deg from through -> toward)", key)
-    if not isinstance(toward, str):
+    if not isinstance(toward, str) or not toward.strip():
         raise where.error(f"toward must be a joint's name: got {toward!r}", key)
+    if toward == through:
+        raise where.error(f"through and toward are the same joint {through!r}: the guide has no direction (give "
+                          "toward, a second joint of the link)", key + ".toward")
     link, point, base = local(through, toward)
+    if base is None:
+        raise where.error(f"joints {through!r} and {toward!r} are one point of link {link!r}: the guide has no "
+                          "direction", key + ".toward")
     return Line(link, point, base + angle)
 
 
@@ -226,7 +252,9 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
         Naming ``source``, the group or key, and what is wrong.
     """
     top = _Where(source, "the file")
-    unknown = sorted(set(data) - _TOP)
+    if not isinstance(data, Mapping):
+        raise top.error(f"must be a table of keys (name, frame, crank, …): got {data!r}")
+    unknown = sorted(set(data) - _TOP, key=str)
     if unknown:
         raise top.error(f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))}; "
                         f"a linkage file has {', '.join(sorted(_TOP))}")
@@ -237,8 +265,9 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
             raise top.error(f"[{key}] must be one table" + (" (a linkage has one driving crank)"
                                                              if key == "crank" else ""), key)
     name = data.get("name", Path(source).stem)
-    if not isinstance(name, str):
-        raise top.error(f"must be a string: got {name!r}", "name")
+    for key, text in (("name", name), ("description", data.get("description", ""))):
+        if not isinstance(text, str):
+            raise top.error(f"must be a string: got {text!r}", key)
     frame_where = _Where(source, "[frame]")
     frame = {joint: frame_where.point(value, joint) for joint, value in data["frame"].items()}
     where = _Where(source, "[crank]")
@@ -248,7 +277,7 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
                                  crank_table.get("link", "crank") if "link" not in crank_table
                                  else where.name(crank_table, "link"),
                                  where.length(crank_table["length"], "length"))]
-    places: dict[int, str] = {0: "[crank]"}
+    places: dict[int, _Where] = {id(groups[0]): where}
     # moving guides and points on joint pairs need the links' frames: resolved by a first Linkage
     pending: list[tuple[str, Mapping[str, Any], _Where]] = []
     for kind in ("dyad", "point", "triad"):
@@ -259,8 +288,8 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
             pending.append((kind, table, _Where(source, _place(kind, number, table))))
     masses = _masses(data.get("mass", []), source)
 
-    def local_of(groups_so_far: list[Group]) -> Callable[[str, str], tuple[str, complex, float]]:
-        def local(through: str, toward: str) -> tuple[str, complex, float]:
+    def local_of(groups_so_far: list[Group]) -> Callable[[str, str], tuple[str, complex, float | None]]:
+        def local(through: str, toward: str) -> tuple[str, complex, float | None]:
             try:
                 partial = Linkage(frame, groups_so_far, name=name)
             except MechanismError:
@@ -269,7 +298,8 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
                 if through in joints and toward in joints:
                     frame_of = partial._links[link].local
                     direction = frame_of[toward] - frame_of[through]
-                    return link, frame_of[through], math.atan2(direction.imag, direction.real)
+                    return link, frame_of[through], (math.atan2(direction.imag, direction.real)
+                                                     if direction else None)
             raise _NotYet
         return local
 
@@ -284,23 +314,49 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
             except _NotYet:
                 still.append((kind, table, place))
                 continue
-            places[len(groups)] = place.place
+            places[id(group)] = place
             groups.append(group)
             progress = True
         if not progress:
             try:      # an error elsewhere (a joint no group finds, a cycle) is the one to report
                 Linkage(frame, groups, name=name)
             except MechanismError as error:
-                raise StructureError(f"{source}: {error}") from None
+                raise _located(error, source, places) from None
             kind, table, place = still[0]
             guide = table.get("guide") or table.get("guides")
             raise place.error(f"its guide ({guide!r}) or link is on joints that are not both on one link, or that "
                               "no group finds")
         waiting = still
     try:
-        return Linkage(frame, groups, name=name, masses=masses, source=source)
+        linkage = Linkage(frame, groups, name=name, masses=masses, source=source)
     except MechanismError as error:
-        raise StructureError(f"{source}: {error}") from None
+        raise _located(error, source, places) from None
+    bodies = set(linkage.links) | {j for joints in linkage.link_joints().values() for j in joints}
+    for number, body in enumerate(masses, 1):
+        if body not in bodies:
+            raise _Where(source, f"[[mass]] #{number}").error(
+                f"no body {body!r}: a body is a link ({', '.join(linkage.links)}) or a joint with a sliding block",
+                "body")
+    return linkage
+
+
+def _located(error: MechanismError, source: str, places: Mapping[int, _Where]) -> StructureError:
+    """A linkage's error about one group, told at the group's place in the file and, if known, its key."""
+    place = places.get(id(error.group)) if isinstance(error, _GroupError) else None
+    if place is None or not isinstance(error, _GroupError):
+        return StructureError(f"{source}: {error}")
+    return place.error(error.cause, _file_key(error.key))
+
+
+def _file_key(field: str | None) -> str | None:
+    """The file's key for a field a group's error names: ``first_length`` → ``lengths``, ``bar AD`` → ``bars``,
+    ``distances[0]`` → ``distances``; ``guess.D`` as it is."""
+    if field is None:
+        return None
+    if field in _FILE_KEYS:
+        return _FILE_KEYS[field]
+    head = field.split("[")[0].split(".")[0].split(" ")[0]
+    return _FILE_KEYS.get(head, head if head != field.split("[")[0] or "[" in field else field)
 
 
 def _place(kind: str, number: int, table: Mapping[str, Any]) -> str:
@@ -309,7 +365,7 @@ def _place(kind: str, number: int, table: Mapping[str, Any]) -> str:
 
 
 def _group(kind: str, table: Mapping[str, Any], where: _Where,
-           local: Callable[[str, str], tuple[str, complex, float]]) -> Group:
+           local: Callable[[str, str], tuple[str, complex, float | None]]) -> Group:
     if kind == "point":
         return _point(table, where)
     if kind == "triad":
@@ -353,10 +409,7 @@ def _group(kind: str, table: Mapping[str, Any], where: _Where,
         return PRP(joint, lines[0], lines[1], links[0], links[1])
     joint, block = where.name(table, "joint"), where.name(table, "block")
     guide = _guide(where, table["guide"], "guide", local)
-    slot = math.radians(where.number(table["slot_angle_deg"], "slot_angle_deg"))
-    if abs(math.sin(slot)) < 1e-9:
-        raise where.error("must not be 0° or 180°: a slot parallel to the guide leaves the yoke free",
-                          "slot_angle_deg")
+    slot = where.angle(table["slot_angle_deg"], "slot_angle_deg")
     links = where.links(table, (block, joint))
     return RPP(joint, block, guide, slot, links[0], links[1])
 
@@ -405,9 +458,12 @@ def _triad(table: Mapping[str, Any], where: _Where) -> Triad:
     guess = table["guess"]
     if not isinstance(guess, dict) or set(guess) != set(joints):
         raise where.error(f"must give a position [x, y] for each joint {', '.join(joints)}: got {guess!r}", "guess")
-    links = tuple(table["links"]) if "links" in table else ()
+    links = table.get("links", [])
+    if (not isinstance(links, list) or not all(isinstance(v, str) and v.strip() for v in links)
+            or len(set(links)) != len(links)):
+        raise where.error(f"must be a list of the group's link names, each once: got {links!r}", "links")
     return Triad(tuple(joints), tuple(parsed), tuple(where.point(guess[j], f"guess.{j}") for j in joints),
-                 math.radians(where.number(table.get("guess_angle_deg", 0.0), "guess_angle_deg")), links)
+                 where.angle(table.get("guess_angle_deg", 0.0), "guess_angle_deg"), tuple(links))
 
 
 def _masses(tables: Any, source: str) -> dict[str, dict[str, float]]:
@@ -445,9 +501,25 @@ def load_linkage(path: str | Path) -> Linkage:
         The file cannot be read, is not TOML, or describes no valid linkage (the message names
         the file, the group or key, and the cause).
     """
-    path = Path(path)
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
+    if not isinstance(path, (str, os.PathLike)):
+        raise StructureError(f"load_linkage: path must be a file's path (a str or a Path) or the name of a shipped "
+                             f"example: got {path!r}")
+    try:
+        path = Path(path)
+    except TypeError:                           # an os.PathLike whose __fspath__ gives no str
+        raise StructureError(f"load_linkage: path must be a file's path: got {path!r}") from None
     source = str(path)
-    if not path.exists() and path.suffix == "" and path.name in example_files():
+    if "\0" in source:
+        raise StructureError(f"{source!r}: not a file's path: it holds a NUL character")
+    try:
+        folder, exists = path.is_dir(), path.exists()
+    except (OSError, ValueError) as error:       # a name too long for the system, one it cannot encode
+        raise StructureError(f"{source[:200]}: cannot be read: {getattr(error, 'strerror', None) or error}") from None
+    if folder:
+        raise StructureError(f"{source}: is a folder, not a linkage file")
+    if not exists and path.suffix == "" and path.name in example_files():
         path, source = example_file(path.name), f"{path.name}.toml (shipped with the package)"
     try:
         with open(path, "rb") as handle:
@@ -455,8 +527,8 @@ def load_linkage(path: str | Path) -> Linkage:
     except FileNotFoundError:
         raise StructureError(f"{source}: no such file (shipped examples: {', '.join(example_files())})") from None
     except OSError as error:
-        raise StructureError(f"{source}: cannot be read: {error.strerror}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+        raise StructureError(f"{source}: cannot be read: {error.strerror or error}") from None
+    except (tomllib.TOMLDecodeError, UnicodeError) as error:
         raise StructureError(f"{source}: not a valid TOML file: {error}") from None
     return linkage_from_dict(data, source)
 
