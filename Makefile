@@ -9,7 +9,7 @@ STAMP  := $(VENV)/.installed
 SITE   := _build/html
 STUDENT := _build/student
 
-.PHONY: book book-student pdf test notebooks sources typecheck clean
+.PHONY: book book-student pdf test notebooks sources typecheck cpu-levels clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -54,6 +54,12 @@ notebooks: $(STAMP)
 # either file of a pair, sync them (the newer file wins), then re-execute with `make notebooks NB=…`.
 sources: $(STAMP)
 	$(BIN)/jupytext --sync book/[0-9][0-9]-*.ipynb exercises/[0-9][0-9]-*.ipynb
+
+# Every notebook re-executed (strict nbval) at each numpy CPU level this machine can imitate besides its own
+# (NPY_DISABLE_CPU_FEATURES: without AVX-512, baseline): stored outputs must not depend on the processor.
+# `make test` runs it too; run it before committing a notebook.
+cpu-levels: $(STAMP)
+	$(BIN)/python -m pytest tests/test_cpu_levels.py -v
 
 # Type checking of the package (configuration in pyproject.toml); `make test` runs it too.
 typecheck: $(STAMP)

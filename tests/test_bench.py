@@ -188,3 +188,137 @@ def test_setting_labels_are_powers_of_ten_in_math():
     from mechanisms.bench import setting_label
     assert setting_label("newton", 1e-10) == r"$\mathrm{tol} = 10^{-10}$"
     assert setting_label("central difference", 1e-5) == "$h = 10^{-5}$"
+
+
+# --- the figures of round-off (chapter 9), the same bits on every machine ---------------------------
+
+HALF_ANGLE_GEOMETRY = (1.0, 3.5, 3.0, (-2.0, 3.0))      # chapter 9, §9.6.3
+
+
+def _nudged(function, rng):
+    """``function`` whose double-precision results are moved by one unit in the last place, at random.
+
+    Each element keeps its value (a third of them) or moves one ulp up or down: a faithful double-
+    precision sine or arctangent other than numpy's, as another processor's vector kernels may give.
+    Complex results have each part moved; ``numpy.abs`` of real numbers (exact) is left alone.
+    """
+    def nudge(a):
+        moved = np.nextafter(a, np.where(rng.random(a.shape) < 0.5, -np.inf, np.inf))
+        return np.where(rng.random(a.shape) < 1 / 3, a, moved)
+
+    def wrapper(*args, **kwargs):
+        result = function(*args, **kwargs)
+        values = np.asarray(result)
+        if function in (np.absolute, np.abs) and not np.iscomplexobj(args[0]):
+            return result
+        if values.dtype == np.float64:
+            moved = nudge(values)
+        elif values.dtype == np.complex128:
+            moved = nudge(values.real) + 1j * nudge(values.imag)
+        else:                       # extended precision: the C library's, the same on every machine
+            return result
+        return moved if isinstance(result, np.ndarray) else moved[()]
+    return wrapper
+
+
+NUDGED = ("sin", "cos", "tan", "arctan", "arctan2", "arcsin", "arccos", "hypot", "exp", "log",
+          "power", "tanh", "cbrt", "angle", "absolute", "abs")
+
+
+def _chapter_9_round_off():
+    """What chapter 9 prints or plots of round-off, computed by the package's reproducible functions."""
+    from mechanisms.analysis.four_bar import half_angle_denominator_root
+    m = bench.benchmark_mechanisms()["four-bar"]
+    root = half_angle_denominator_root(*np.radians([2.0, 3.0]), *HALF_ANGLE_GEOMETRY, extended=True)
+    offsets = bench.logspace(-1, -12, 23)
+    angles = bench.reproducible_coupler_angles(root + offsets, *HALF_ANGLE_GEOMETRY, branch=-1)
+    steps = bench.logspace(-2, -6, 5)
+    errors = bench.step_errors(m, steps, n=24)
+    return [np.array([root]), offsets, angles["half-angle"], angles["stable"], steps,
+            errors["velocities"], errors["accelerations"]]
+
+
+def test_chapter_9_round_off_has_the_same_bits_when_numpys_elementary_functions_differ(monkeypatch):
+    # The closest this machine comes to an AVX-512 processor: every double-precision sine, cosine,
+    # arctangent, power … that numpy computes is moved by one ulp at random (a faithful function other
+    # than this machine's). What the chapter plots must not move at all. (It checks only calls made
+    # through numpy's functions by name; operators such as complex multiplication are not covered.)
+    expected = _chapter_9_round_off()
+    for seed in range(3):
+        rng = np.random.default_rng(seed)
+        with monkeypatch.context() as patch:
+            for name in NUDGED:
+                patch.setattr(np, name, _nudged(getattr(np, name), rng))
+            got = _chapter_9_round_off()
+        for a, b in zip(got, expected):
+            assert a.tobytes() == b.tobytes()
+
+
+def test_the_nudge_changes_the_closed_forms_round_off(monkeypatch):
+    # The test above can fail: the package's own closed form does change under the nudge.
+    m = bench.benchmark_mechanisms()["four-bar"]
+    phi = np.radians(np.arange(0.0, 360.0, 7.0))
+    plain = np.array([c.value for c in m.coordinates(m.solve(phi, order=0))])
+    rng = np.random.default_rng(0)
+    with monkeypatch.context() as patch:
+        for name in NUDGED:
+            patch.setattr(np, name, _nudged(getattr(np, name), rng))
+        nudged = np.array([c.value for c in m.coordinates(m.solve(phi, order=0))])
+    assert nudged.tobytes() != plain.tobytes()
+    assert np.max(np.abs(nudged - plain)) < 1e-14
+
+
+def test_logspace_is_the_powers_of_ten_correctly_rounded():
+    mpmath = pytest.importorskip("mpmath")
+    mpmath.mp.prec = 200
+    for start, stop, num in ((-1, -8, 15), (-1, -12, 23), (-2, -6, 9), (0, 3, 4)):
+        got = bench.logspace(start, stop, num)
+        # 10**x for the exact exponents start + k (stop − start)/(num − 1), rounded once by mpmath
+        expected = [float(mpmath.power(10, mpmath.mpf(start) + k * (mpmath.mpf(stop) - start) / (num - 1)))
+                    for k in range(num)]
+        assert got.tolist() == expected
+
+
+def test_reproducible_coupler_angles_are_the_formulas_with_correctly_rounded_functions():
+    mpmath = pytest.importorskip("mpmath")
+    mpmath.mp.prec = 200
+    crank, coupler, rocker, (a, b) = HALF_ANGLE_GEOMETRY
+    phi = [0.04212263556548 + 10.0 ** -k for k in range(1, 13)] + [1.0, 2.5, -2.0]
+    got = bench.reproducible_coupler_angles(phi, *HALF_ANGLE_GEOMETRY, branch=-1)
+    for i, angle in enumerate(phi):
+        x = mpmath.mpf(angle)
+        # 𝒫, 𝒬, ℱ exact (mpmath) and rounded once; then the formulas in Python floats, whose
+        # +, −, ×, ÷ and square root are correctly rounded, with mpmath's arctangents rounded once
+        p_exact, q_exact = a - crank * mpmath.cos(x), b - crank * mpmath.sin(x)
+        p, q = float(p_exact), float(q_exact)
+        f = float((p_exact**2 + q_exact**2 + coupler**2 - rocker**2) / (2 * coupler))
+        t = (q - math.sqrt(q * q + p * p - f * f)) / (p + f)
+        assert got["half-angle"][i] == 2.0 * float(mpmath.atan(t)), i
+        r = float(mpmath.hypot(p, q))
+        height = math.sqrt((coupler + rocker + r) * (coupler + rocker - r) * (r - (coupler - rocker))
+                           * (r + (coupler - rocker))) / (2.0 * coupler)
+        foot = (r * r + (coupler - rocker) * (coupler + rocker)) / (2.0 * coupler)
+        psi = float(mpmath.atan2(q, p)) - float(mpmath.atan2(height, foot))
+        if psi <= -math.pi or psi > math.pi:      # not met at these angles: the sum is in (−π, π]
+            pytest.fail("the test's angles should not need wrapping")
+        assert got["stable"][i] == psi, i
+
+
+def test_the_extended_root_of_p_plus_f_changes_sign_at_the_next_double():
+    mpmath = pytest.importorskip("mpmath")
+    from mechanisms.analysis.four_bar import half_angle_denominator_root
+    mpmath.mp.prec = 200
+    crank, coupler, rocker, (a, b) = HALF_ANGLE_GEOMETRY
+
+    def p_plus_f(angle):          # exact 𝒫 + ℱ at a double φ (mpmath, 200 bits)
+        p, q = a - crank * mpmath.cos(mpmath.mpf(angle)), b - crank * mpmath.sin(mpmath.mpf(angle))
+        return p + (p**2 + q**2 + coupler**2 - rocker**2) / (2 * coupler)
+
+    low, high = np.radians([2.0, 3.0])
+    root = half_angle_denominator_root(low, high, *HALF_ANGLE_GEOMETRY, extended=True)
+    after = float(np.nextafter(root, high))
+    assert mpmath.sign(p_plus_f(root)) == mpmath.sign(p_plus_f(low)) != mpmath.sign(p_plus_f(after))
+    # the default, double precision, keeps its behaviour: its 𝒫 + ℱ carries round-off of a few
+    # 1e-16 m, and the slope of 𝒫 + ℱ is of order 1 m/rad, so its root is within about 1e-15 rad
+    plain = half_angle_denominator_root(low, high, *HALF_ANGLE_GEOMETRY)
+    assert abs(plain - root) < 1e-14

@@ -22,6 +22,8 @@ import make_pdf  # noqa: E402
 
 import pypdf  # noqa: E402  (the test extra)
 
+pytestmark = pytest.mark.needs_site("full", "student")   # the PDFs are printed from both sites
+
 SOLUTION_MARK = "Solution to"
 """How the site marks a worked solution: sphinx-exercise titles each one "Solution to Exercise N.M"."""
 

@@ -41,7 +41,7 @@ GENERATED = {"genindex.html", "search.html", "index.html"}  # Sphinx's own pages
 # Console messages that are not errors of the book (none are needed today; keep each with a reason).
 CONSOLE_ALLOW: tuple[str, ...] = ()
 
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.needs_site("full", "student")]
 
 
 def site_pages(site: pathlib.Path = SITE) -> list[str]:

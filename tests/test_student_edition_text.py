@@ -6,7 +6,8 @@ its exercise pages must not tell a student to open one ("Try each before you ope
 and ``{only} not student_edition`` (the tag is set by `_ext/student_edition.py`); every exercise and
 every self-check question carries its short answer in an *Answer* dropdown, which both editions show.
 
-`make test` builds both editions before pytest; run alone after `make book-student`.
+`make test` builds both editions before pytest; run alone after `make book-student` (without it pytest stops
+at collection and says so, tests/conftest.py).
 """
 
 from __future__ import annotations
@@ -17,8 +18,7 @@ import re
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
-STUDENT_SITE = ROOT / "_build" / "student" / "_build" / "html"
+pytestmark = pytest.mark.needs_site("student")
 
 # wording that points a reader to a worked solution on the page
 SOLUTION_WORDING = re.compile(
@@ -30,11 +30,14 @@ SOLUTION_WORDING = re.compile(
 )
 
 
-def exercise_pages() -> list[pathlib.Path]:
-    pages = sorted((STUDENT_SITE / "exercises").glob("*.html"))
-    if not pages:
-        pytest.fail(f"the student edition is not built: no exercise pages in {STUDENT_SITE / 'exercises'}; "
-                    "run `make book-student` (or `make test`, which builds both editions) first")
+@pytest.fixture
+def student_site(built_site) -> pathlib.Path:
+    return built_site("student")
+
+
+def exercise_pages(site: pathlib.Path) -> list[pathlib.Path]:
+    pages = sorted((site / "exercises").glob("*.html"))
+    assert pages, f"the student edition in {site} has no exercise pages"
     return pages
 
 
@@ -44,29 +47,29 @@ def visible_text(html: str) -> str:
     return " ".join(html_module.unescape(re.sub(r"<[^>]+>", " ", html)).split())
 
 
-def test_the_student_edition_does_not_send_students_to_solutions():
+def test_the_student_edition_does_not_send_students_to_solutions(student_site):
     # expected: none of the wording of SOLUTION_WORDING (the full edition's intro says it, in {only})
-    for page in exercise_pages():
+    for page in exercise_pages(student_site):
         text = visible_text(page.read_text(encoding="utf8"))
         found = sorted({m.group(0) for m in SOLUTION_WORDING.finditer(text)})
-        assert not found, (f"{page.relative_to(STUDENT_SITE)}: the student edition has no solutions, "
+        assert not found, (f"{page.relative_to(student_site)}: the student edition has no solutions, "
                            f"yet the page says {found}")
         assert "student edition gives the short answers" in text, \
-            f"{page.relative_to(STUDENT_SITE)}: the student edition's introduction is missing"
+            f"{page.relative_to(student_site)}: the student edition's introduction is missing"
 
 
-def test_every_exercise_has_its_level_and_answer_in_the_student_edition():
+def test_every_exercise_has_its_level_and_answer_in_the_student_edition(student_site):
     # expected: one "Answer" dropdown per exercise, more for the self-check questions (at least two), and
     # every exercise title marked ✍ or ⌨ and with its level, ★ to ★★★
-    for page in exercise_pages():
+    for page in exercise_pages(student_site):
         html = page.read_text(encoding="utf8")
         exercises = html.count('class="exercise admonition')
         answers = len(re.findall(r"<summary[^>]*>.*?Answer.*?</summary>", html, flags=re.S))
-        assert exercises >= 6, f"{page.relative_to(STUDENT_SITE)}: {exercises} exercises, fewer than 6"
+        assert exercises >= 6, f"{page.relative_to(student_site)}: {exercises} exercises, fewer than 6"
         assert answers >= exercises + 2, \
-            f"{page.relative_to(STUDENT_SITE)}: {answers} answers for {exercises} exercises and the self-check"
+            f"{page.relative_to(student_site)}: {answers} answers for {exercises} exercises and the self-check"
         titles = re.findall(r'<p class="admonition-title">\s*<span class="caption-number">Exercise [0-9.]+\s*</span>'
                             r"(.*?)</p>", html, flags=re.S)
         unmarked = [t.strip() for t in titles if not re.search(r"[✍⌨] ★{1,3} ", t)]
         assert len(titles) == exercises and not unmarked, \
-            f"{page.relative_to(STUDENT_SITE)}: exercise titles without a mark (✍ or ⌨) and a level (★ to ★★★): {unmarked}"
+            f"{page.relative_to(student_site)}: exercise titles without a mark (✍ or ⌨) and a level (★ to ★★★): {unmarked}"

@@ -1,7 +1,7 @@
 """Weight budgets of issue 17: what a reader downloads, and what the repository stores.
 
-* Every page of the built site, both editions (``make book``, ``make book-student``; the test fails naming
-  the command when one is missing), weighs at most 1 MB with its own figures: the HTML file itself (with
+* Every page of the built site, both editions (``make book``, ``make book-student``; pytest stops at
+  collection naming the command when one is missing, tests/conftest.py), weighs at most 1 MB with its own figures: the HTML file itself (with
   every ``data:`` URI and scene inline in it) plus every file under ``_images/`` it refers to. MathJax
   (``mathjax/``) and the theme's shared files (``_static/`` …) are loaded once for the whole site and are
   not counted.
@@ -21,7 +21,7 @@ import urllib.parse
 
 import pytest
 
-from test_site import EDITIONS, ROOT, require_built
+from conftest import BUILT_SITES, ROOT
 
 PAGE_BUDGET = 1_000_000          # bytes of a page with its own images and scenes
 NOTEBOOK_BUDGET = 4_000_000      # bytes of all notebooks of book/ and exercises/ together
@@ -90,9 +90,9 @@ def test_own_images_finds_the_files_a_page_refers_to(tmp_path):
     assert (images, name) == (1300, "book/p.html") and total == own + 1300 == page.stat().st_size + 1300
 
 
-@pytest.mark.parametrize("edition", list(EDITIONS))
-def test_every_page_is_within_its_budget(edition):
-    site = require_built(edition)
+@pytest.mark.parametrize("edition", [pytest.param(e, marks=pytest.mark.needs_site(e)) for e in BUILT_SITES])
+def test_every_page_is_within_its_budget(edition, built_site):
+    site = built_site(edition)
     rows = weigh(site)
     assert rows, f"the {edition} edition has no pages"
     over = [name for total, _, _, name in rows if total > PAGE_BUDGET]

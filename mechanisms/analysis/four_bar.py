@@ -227,7 +227,7 @@ def half_angle_terms(phi: ArrayLike, crank: float, coupler: float, rocker: float
 
 
 def half_angle_denominator_root(low: float, high: float, crank: float, coupler: float, rocker: float,
-                                frame: tuple[float, float]) -> float:
+                                frame: tuple[float, float], *, extended: bool = False) -> float:
     """The crank angle between two others where the half-angle formula's denominator 𝒫 + ℱ is zero.
 
     Parameters
@@ -238,6 +238,10 @@ def half_angle_denominator_root(low: float, high: float, crank: float, coupler: 
         L1, L2, L3 (m).
     frame : tuple of float
         The rocker pivot C = (x_C, y_C) (m).
+    extended : bool
+        Evaluate 𝒫 + ℱ in extended precision (``numpy.longdouble``, whose sine and cosine are the C
+        library's, the same on every x86-64 processor) instead of double: the root is then the same
+        on every machine, where double precision's sine and cosine may differ in their last bit.
 
     Returns
     -------
@@ -256,8 +260,10 @@ def half_angle_denominator_root(low: float, high: float, crank: float, coupler: 
     halves the bracket, keeping the half whose ends have opposite signs, until its midpoint equals one
     of its ends. Chapter 9 measures the half-angle formula's error near this root.
     """
+    dtype = np.longdouble if extended else float
+
     def denominator(angle: float) -> float:
-        p, _, f = half_angle_terms(np.array([angle]), crank, coupler, rocker, frame)
+        p, _, f = _pqf(np.array([angle]), crank, coupler, rocker, frame, dtype)
         return float((p + f)[0])
 
     sign = math.copysign(1.0, denominator(low))

@@ -40,7 +40,7 @@ from ..core.motion import AngleMotion, Motion
 from ..linkages.base import Mechanism, Solution, registry
 from ..core.errors import SingularPositionWarning
 from ..linkages.composed import Linkage
-from ..linkages.four_bar import FourBar
+from ..linkages.four_bar import FourBar, _pqf, half_angle_formula, stable_formula
 from ..linkages.groups import RRR, Crank
 from ..linkages.linkage_file import load_linkage
 from ..verify import central_difference, solve_constraints
@@ -53,6 +53,10 @@ __all__ = [
     "Reference",
     "coordinate_errors",
     "jacobian_condition",
+    "reproducible_reference",
+    "logspace",
+    "rounded_once",
+    "reproducible_coupler_angles",
     "output_bytes",
     "best_time",
     "run",
@@ -323,21 +327,26 @@ def _bench_mechanism(name: str, mechanism: Mechanism, n: int, repeat: int) -> li
 
 
 def _central_differences(mechanism: Mechanism, phi: np.ndarray, step: float, derivative: int,
-                         angle_rows: Sequence[bool]) -> np.ndarray:
+                         angle_rows: Sequence[bool],
+                         positions: Callable[[np.ndarray], np.ndarray] | None = None) -> np.ndarray:
     """Central differences of every coordinate, shape (k, n): velocities or accelerations.
 
     Each shifted crank angle is solved once for all k coordinates, as a program would: velocities
     cost two solutions of positions (at φ ± h), accelerations three (also at φ). Each row is
-    :func:`~mechanisms.verify.central_difference` of its coordinate (angles wrapped).
+    :func:`~mechanisms.verify.central_difference` of its coordinate (angles wrapped). ``positions``
+    gives the coordinates (k, n) at crank angles (rad); by default the closed form's.
     """
+    if positions is None:
+        def positions(shifted: np.ndarray) -> np.ndarray:
+            return np.array([c.value for c in mechanism.coordinates(mechanism.solve(shifted, OMEGA, order=0))])
+    solve = positions
     solved: dict[int, np.ndarray] = {}     # −1, 0, +1: the solution at φ − h, φ, φ + h
 
     def row_function(row: int) -> Callable[[np.ndarray], np.ndarray]:
         def position(shifted: np.ndarray) -> np.ndarray:
             side = round(float(shifted.flat[0] - phi.flat[0]) / step)
             if side not in solved:
-                coords = mechanism.coordinates(mechanism.solve(shifted, OMEGA, order=0))
-                solved[side] = np.array([c.value for c in coords])
+                solved[side] = solve(shifted)
             return solved[side][row]
         return position
 
@@ -560,23 +569,168 @@ def work_precision(mechanism: Mechanism, n: int = 2000, repeat: int = 5,
     return rows
 
 
-def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> dict[str, np.ndarray]:
-    """Errors of central differences of the closed-form positions against the step h (rad).
+def reproducible_reference(mechanism: Mechanism, phi: ArrayLike) -> Reference:
+    """:func:`reference` with the same bits on every machine: what a figure of round-off may plot.
 
-    Returns ``{"velocities": …, "accelerations": …}``, the largest error over ``n`` positions for each
-    step (1/s, m/s … and per second squared, at ω = 1 1/s).
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with k unknown coordinates.
+    phi : array_like
+        Crank angles φ (rad), taken as exact.
+
+    Returns
+    -------
+    Reference
+        ``(q, q_t, q_tt)`` in ``numpy.longdouble``, each of shape (k, n), at φ_t = 1 1/s, φ_tt = 0.
+
+    Notes
+    -----
+    :func:`reference` starts from the closed form, whose last bits depend on the processor (numpy
+    picks its sine, cosine and arctangent by the processor's vector instructions), and so do the
+    last bits of its extended-precision result. Here that result is rounded to single precision
+    (24 bits: a value 1e-19 from a rounding boundary of single precision is practically never met) and
+    polished again by three Newton steps in extended precision (2⁻²⁴ → 2⁻⁴⁸ → below 2⁻⁶⁴, then a
+    margin), then differentiated exactly. Extended precision has no vector kernels in numpy: its
+    arithmetic is the x87 unit's, its sine and cosine the C library's, the same on every x86-64
+    processor. Rounded once to double, its positions are the exact ones correctly rounded (but for
+    a value within 1e-19 of a rounding boundary of double precision), on every machine.
+    """
+    phi_ld = np.atleast_1d(np.asarray(phi)).astype(np.longdouble)
+    start = reference(mechanism, phi_ld).q.astype(np.float32).astype(np.longdouble)
+    q = newton_steps(mechanism.constraints, start, phi_ld, 3)
+    q_t, q_tt = rates(mechanism.constraints, q, phi_ld, np.longdouble(OMEGA), np.longdouble(0.0), 2)
+    assert q_t is not None and q_tt is not None   # order 2
+    return Reference(q, q_t, q_tt)
+
+
+def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> dict[str, np.ndarray]:
+    """Errors of central differences of positions rounded to double against the step h (rad).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with k unknown coordinates.
+    steps : sequence of float
+        Steps h (rad).
+    n : int
+        Crank positions, evenly over a turn.
+
+    Returns
+    -------
+    dict
+        ``{"velocities": …, "accelerations": …}``, the largest error over the ``n`` positions and the k
+        coordinates for each step (1/s, m/s … and per second squared, at ω = 1 1/s).
+
+    Notes
+    -----
+    The positions differentiated are the best double precision can hold: the exact ones rounded
+    once (:func:`reproducible_reference`), each off by at most half a unit in its last place. Their
+    round-off is the smallest any formula can reach, and it is the same on every machine, so the
+    errors are too (the closed form's own positions differ in their last bits from processor to
+    processor); they are measured against the exact derivatives in extended precision.
     """
     phi = np.arange(n) * (2.0 * math.pi / n)
-    ref = reference(mechanism, phi)
+    exact = reproducible_reference(mechanism, phi)
     angles = _angle_rows(mechanism)
+
+    def rounded(shifted: np.ndarray) -> np.ndarray:
+        return reproducible_reference(mechanism, shifted).q.astype(float)
+
     out = {}
     for k, name in ((1, "velocities"), (2, "accelerations")):
         errors = []
         for h in steps:
-            values = _central_differences(mechanism, phi, h, k, angles)
-            errors.append(max(float(np.max(np.abs(values[r] - ref[k][r]))) for r in range(len(angles))))
+            values = _central_differences(mechanism, phi, h, k, angles, rounded)
+            errors.append(max(float(np.max(np.abs(values[r] - exact[k][r]))) for r in range(len(angles))))
         out[name] = np.array(errors)
     return out
+
+
+def logspace(start: float, stop: float, num: int) -> np.ndarray:
+    """``numpy.logspace(start, stop, num)`` with the same bits on every machine: steps for a figure.
+
+    Parameters
+    ----------
+    start, stop : float
+        Exponents of the first and last value (powers of ten).
+    num : int
+        Number of values, evenly spaced in the exponent.
+
+    Returns
+    -------
+    ndarray
+        ``10**x`` for the ``num`` exponents x, in double precision.
+
+    Notes
+    -----
+    numpy's double-precision power is chosen by the processor's vector instructions, and its last bit
+    may differ from machine to machine; a step h that differs in its last bit gives other crank angles
+    φ ± h and other round-off. Here the exponents and the powers are computed in extended precision
+    (the C library's, the same on every x86-64 processor) and rounded once to double.
+    """
+    exponents = np.linspace(np.longdouble(start), np.longdouble(stop), num)
+    return np.asarray(np.power(np.longdouble(10), exponents), dtype=float)
+
+
+def rounded_once(function: Callable[..., np.ndarray]) -> Callable[..., np.ndarray]:
+    """A numpy function of double-precision arguments, evaluated in extended precision and rounded once.
+
+    Parameters
+    ----------
+    function : callable
+        An elementary function such as ``numpy.arctan2``.
+
+    Returns
+    -------
+    callable
+        The same function of the same (double) arguments, its value computed in ``numpy.longdouble``
+        and rounded once to double: correctly rounded but for values within about 1e-19 (relative)
+        of a rounding boundary of double precision, and the same on every machine.
+    """
+    def rounded(*args: ArrayLike) -> np.ndarray:
+        extended = [np.asarray(a, dtype=float).astype(np.longdouble) for a in args]
+        return np.asarray(function(*extended), dtype=float)
+    return rounded
+
+
+def reproducible_coupler_angles(phi: ArrayLike, crank: float, coupler: float, rocker: float,
+                                frame: tuple[float, float], branch: int = 1) -> dict[str, np.ndarray]:
+    """The coupler angle ψ by the half-angle formula and by the stable form, the same on every machine.
+
+    Parameters
+    ----------
+    phi : array_like
+        Crank angles φ (rad).
+    crank, coupler, rocker : float
+        L1, L2, L3 (m).
+    frame : tuple of float
+        The rocker pivot C = (x_C, y_C) (m).
+    branch : int
+        +1 or −1.
+
+    Returns
+    -------
+    dict
+        ``{"half-angle": ψ, "stable": ψ}`` (rad), double precision.
+
+    Notes
+    -----
+    The two formulas of :func:`~mechanisms.linkages.four_bar.half_angle_formula` and
+    :func:`~mechanisms.linkages.four_bar.stable_formula`, as a double-precision computer with correctly
+    rounded elementary functions evaluates them: 𝒫, 𝒬, ℱ computed in extended precision and rounded
+    once to double, the arctangents and ``hypot`` rounded once (:func:`rounded_once`), everything else
+    (the subtractions, products, square roots and divisions in which the half-angle formula loses its
+    digits) in double precision, whose basic operations are correctly rounded on every processor.
+    What differs between machines — the last bit of double precision's sine, cosine and arctangent —
+    is not used, so a figure of these round-off errors is the same everywhere (chapter 9).
+    """
+    p, q, f = (np.asarray(v, dtype=float) for v in _pqf(phi, crank, coupler, rocker, frame, np.longdouble))
+    return {
+        "half-angle": half_angle_formula(p, q, f, branch, arctan=rounded_once(np.arctan)),
+        "stable": stable_formula(p, q, coupler, rocker, branch, arctan2=rounded_once(np.arctan2),
+                                 hypot=rounded_once(np.hypot)),
+    }
 
 
 def cost_against_size(mechanism: Mechanism, sizes: Sequence[int], repeat: int = 3,

@@ -18,7 +18,7 @@ from __future__ import annotations
 import functools
 import math
 from fractions import Fraction
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -39,6 +39,8 @@ __all__ = [
     "CHANGE_POINT_TOLERANCE",
     "half_angle_coupler_angle",
     "stable_coupler_angle",
+    "half_angle_formula",
+    "stable_formula",
     "cramer_rates",
     "assembly_intervals",
     "change_point_angles",
@@ -52,9 +54,13 @@ linkage, whose branch the general solution keeps."""
 
 # --- the lecture's formulas -------------------------------------------------------------------
 
-def _pqf(phi, crank: float, coupler: float, rocker: float, frame: tuple[float, float]):
-    """The lecture's P = a − L1 cos φ, Q = b − L1 sin φ and F = (P² + Q² + L2² − L3²)/(2 L2)."""
-    phi = np.asarray(phi, dtype=float)
+def _pqf(phi, crank: float, coupler: float, rocker: float, frame: tuple[float, float], dtype: type = float):
+    """The lecture's P = a − L1 cos φ, Q = b − L1 sin φ and F = (P² + Q² + L2² − L3²)/(2 L2).
+
+    ``dtype`` is the number type of the arithmetic: ``float``, or ``numpy.longdouble`` for the values
+    before they are rounded once to double (chapter 9).
+    """
+    phi = np.asarray(phi, dtype=dtype)
     p = frame[0] - crank * np.cos(phi)
     q = frame[1] - crank * np.sin(phi)
     f = (p**2 + q**2 + coupler**2 - rocker**2) / (2.0 * coupler)
@@ -89,9 +95,32 @@ def half_angle_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocke
     From ``P cos ψ + Q sin ψ = F`` with ``t = tan(ψ/2)``: ``(P + F)t² − 2Qt + (F − P) = 0``.
     """
     p, q, f = _pqf(phi, crank, coupler, rocker, frame)
+    return half_angle_formula(p, q, f, branch)
+
+
+def half_angle_formula(p: ArrayLike, q: ArrayLike, f: ArrayLike, branch: int = 1,
+                       arctan: Callable[[np.ndarray], np.ndarray] = np.arctan) -> np.ndarray:
+    """The lecture's half-angle formula for ψ from given 𝒫, 𝒬, ℱ (:func:`half_angle_coupler_angle`).
+
+    Parameters
+    ----------
+    p, q, f : array_like
+        𝒫, 𝒬, ℱ (m), double precision.
+    branch : int
+        +1 or −1: the sign before the root.
+    arctan : callable
+        The arctangent of the last step; chapter 9 passes one rounded once from extended precision.
+
+    Returns
+    -------
+    ndarray
+        ``ψ = 2 arctan[(𝒬 ± √(𝒬² + 𝒫² − ℱ²))/(𝒫 + ℱ)]`` (rad): the square root, subtractions and
+        division in double precision, where the formula loses its digits near 𝒫 + ℱ = 0.
+    """
+    p, q, f = (np.asarray(v, dtype=float) for v in (p, q, f))
     with np.errstate(divide="ignore", invalid="ignore"):
         t = (q + branch * np.sqrt(q**2 + p**2 - f**2)) / (p + f)
-    return 2.0 * np.arctan(t)
+    return 2.0 * arctan(t)
 
 
 def stable_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
@@ -103,13 +132,39 @@ def stable_coupler_angle(phi: ArrayLike, crank: float, coupler: float, rocker: f
     (−π, π].
     """
     p, q, _ = _pqf(phi, crank, coupler, rocker, frame)
-    r = np.hypot(p, q)
+    return stable_formula(p, q, coupler, rocker, branch)
+
+
+def stable_formula(p: ArrayLike, q: ArrayLike, coupler: float, rocker: float, branch: int = 1,
+                   arctan2: Callable[[np.ndarray, np.ndarray], np.ndarray] = np.arctan2,
+                   hypot: Callable[[np.ndarray, np.ndarray], np.ndarray] = np.hypot) -> np.ndarray:
+    """The stable form of ψ from given 𝒫 and 𝒬 (:func:`stable_coupler_angle`).
+
+    Parameters
+    ----------
+    p, q : array_like
+        𝒫, 𝒬 (m), double precision.
+    coupler, rocker : float
+        L2, L3 (m).
+    branch : int
+        +1 or −1.
+    arctan2, hypot : callable
+        The two-argument arctangent and ``hypot``; chapter 9 passes ones rounded once from extended
+        precision.
+
+    Returns
+    -------
+    ndarray
+        ``ψ = atan2(𝒬, 𝒫) + branch·atan2(√(R² − ℱ²), ℱ)`` (rad) in (−π, π], ``R = hypot(𝒫, 𝒬)``.
+    """
+    p, q = np.asarray(p, dtype=float), np.asarray(q, dtype=float)
+    r = hypot(p, q)
     total, difference = coupler + rocker, abs(coupler - rocker)
     with np.errstate(invalid="ignore"):
         # R² − F² = ((L2+L3)² − R²)(R² − (L2−L3)²)/(4 L2²)
         height = np.sqrt((total + r) * (total - r) * (r - difference) * (r + difference)) / (2.0 * coupler)
     foot = (r**2 + (coupler - rocker) * (coupler + rocker)) / (2.0 * coupler)   # = F
-    psi = np.arctan2(q, p) + branch * np.arctan2(height, foot)
+    psi = arctan2(q, p) + branch * arctan2(height, foot)
     return wrap_angle(psi)
 
 
