@@ -10,7 +10,6 @@ as a ``table`` subcommand with its ``cli_parameters``; degrees at the interface,
 from __future__ import annotations
 
 import argparse
-import csv
 import io
 import json
 import math
@@ -19,27 +18,49 @@ import pathlib
 import re
 import sys
 import warnings
-from typing import Any, Callable, Sequence, cast
+from typing import Any, Callable, Iterator, Sequence, cast
 
 import numpy as np
 
 from .linkages.base import Mechanism, Solution, registry
 from .linkages.linkage_file import FORMAT_SUMMARY, load_linkage
 from .core.errors import AssemblyError, SingularPositionWarning, InvalidParameterError, MechanismError
+from .core.angles import reduce_degrees
 from .core.motion import Motion
 
-__all__ = ["main", "kinematic_table", "parse_number", "parse_angles", "parse_point", "MAX_POSITIONS"]
+__all__ = ["main", "kinematic_table", "parse_number", "parse_angles", "parse_angles_deg", "to_radians", "parse_point",
+           "MAX_POSITIONS"]
 
 MAX_POSITIONS = 10_000_000
-"""The most crank positions a table may have (a larger one would not fit in memory as text)."""
+"""The most crank positions a table may have (a larger one would not fit in memory as text), and the largest
+size the benchmark takes (``bench --sizes``)."""
+
+MAX_REPEAT = 1000
+"""The most runs ``bench --repeat`` takes (each run times every method at every size)."""
+
+
+_NUMBER = re.compile(r"[-+]?((\d+\.?\d*|\.\d+)(e[-+]?\d+)?|inf|infinity|nan)", re.IGNORECASE | re.ASCII)
+_WHOLE = re.compile(r"[-+]?\d+", re.ASCII)
+
+
+def _number_hint(text: str) -> str:
+    """What is wrong with a number that is not one, in the few cases that have a likely cause."""
+    if "\u2013" in text:
+        return " (write the minus sign as '-', not the en dash '–')"
+    if "," in text:
+        return " (the decimal separator is a point: 0.5, not 0,5)"
+    return ""
 
 
 def parse_number(text: str) -> float:
     """The one parser of the command line's numbers: a decimal or scientific number (``-1e3``, ``.5``,
-    ``-5e-2``) → float. ``nan`` and ``inf`` are read too (as floats are) and refused by the parameter's own
-    validation, which names the parameter; anything else raises :class:`ValueError`."""
-    if not isinstance(text, str) or not text.strip():
-        raise ValueError(f"not a number: {text!r}")
+    ``-5e-2``, also with the Unicode minus ``−``) in ASCII → float. ``nan`` and ``inf`` are read too (as floats are) and refused by the parameter's own
+    validation, which names the parameter; anything else (a comma, a Unicode digit, ``1_000``, hex)
+    raises :class:`ValueError`."""
+    if isinstance(text, str):
+        text = text.strip().replace("\u2212", "-")      # the Unicode minus that word processors write
+    if not isinstance(text, str) or not _NUMBER.fullmatch(text):
+        raise ValueError(f"not a number: {text!r}{_number_hint(text) if isinstance(text, str) else ''}")
     return float(text)
 
 
@@ -48,16 +69,20 @@ def _cli_number(text: str) -> float:
     try:
         return parse_number(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number (e.g. 0.3, -1e3), got {text!r}") from None
+        raise argparse.ArgumentTypeError(f"expected a number (e.g. 0.3, -1e3), got {text!r}"
+                                         f"{_number_hint(text)}") from None
 
 
-def parse_angles(text: str) -> np.ndarray:
-    """``START:STOP:STEP`` in degrees (stop excluded) → crank angles in rad.
+def _cli_whole(text: str) -> int:
+    """A whole number in ASCII digits for argparse (``12``, ``-3``); its range is checked where it is used."""
+    text = text.strip().replace("\u2212", "-")
+    if not _WHOLE.fullmatch(text):
+        raise argparse.ArgumentTypeError(f"expected a whole number (e.g. 12), got {text!r}{_number_hint(text)}")
+    return int(text)
 
-    A range shorter than one step gives START alone (one position); a step that leads away from
-    STOP, a step of 0, or more than :data:`MAX_POSITIONS` positions is an
-    :class:`~mechanisms.core.errors.InvalidParameterError` naming ``--angles``.
-    """
+
+def _angle_range(text: str) -> tuple[float, float, int]:
+    """``START:STOP:STEP`` (°) → (start, step, count), checked as :func:`parse_angles_deg` says."""
     try:
         start, stop, step = (parse_number(v) for v in text.split(":"))
     except ValueError:
@@ -73,7 +98,43 @@ def parse_angles(text: str) -> np.ndarray:
         raise InvalidParameterError("--angles", text, f"at most {MAX_POSITIONS} positions")
     # count the positions first: np.arange with a fractional step may include STOP by round-off
     count = max(1, math.ceil(count_exact - 1e-9))   # START itself at least
-    return np.radians(start + step * np.arange(count))
+    if not math.isfinite(start + step * (count - 1)):   # e.g. -1e308:1.7e308:1e308 runs past the largest double
+        raise InvalidParameterError("--angles", text, "START:STOP:STEP whose angles are finite numbers of degrees")
+    return start, step, count
+
+
+def _angles_between(start: float, step: float, first: int, stop: int) -> np.ndarray:
+    """The angles (°) of positions ``first`` … ``stop − 1`` of the range START, START + STEP, …"""
+    return start + step * np.arange(first, stop)
+
+
+def parse_angles_deg(text: str) -> np.ndarray:
+    """``START:STOP:STEP`` in degrees (stop excluded) → the crank angles in degrees, as asked (not reduced).
+
+    A range shorter than one step gives START alone (one position); a step that leads away from
+    STOP, a step of 0, or more than :data:`MAX_POSITIONS` positions is an
+    :class:`~mechanisms.core.errors.InvalidParameterError` naming ``--angles``.
+    """
+    start, step, count = _angle_range(text)
+    return _angles_between(start, step, 0, count)
+
+
+def to_radians(degrees: Any, name: str) -> Any:
+    """Degrees as a person gives them → radians for the package: reduced exactly first, in degrees
+    (:func:`~mechanisms.core.angles.reduce_degrees`: ``fmod`` by 360°), so that 1e15° is the same
+    direction as 280°, to the last digit; radians are taken only of the reduced angle. ``name`` is the
+    option named by the error for a value that is not a finite number."""
+    reduced = reduce_degrees(degrees, name)
+    return math.radians(reduced) if isinstance(reduced, float) else np.radians(reduced)
+
+
+def parse_angles(text: str) -> np.ndarray:
+    """``START:STOP:STEP`` in degrees (stop excluded) → crank angles in rad, each reduced to (−π, π].
+
+    The angles of :func:`parse_angles_deg`, reduced exactly in degrees before they become radians
+    (:func:`to_radians`).
+    """
+    return to_radians(parse_angles_deg(text), "--angles")
 
 
 def parse_point(text: str) -> tuple[str, str, float, float]:
@@ -110,8 +171,11 @@ _KINDS: dict[str, Callable[[str], Any]] = {"length": _cli_number, "number": _cli
 
 
 def _class_value(parameter, value):
-    """A command-line value as the mechanism's class takes it: angles from degrees to radians."""
-    return math.radians(value) if parameter.kind == "angle" and value is not None else value
+    """A command-line value as the mechanism's class takes it: angles from degrees to radians (reduced
+    exactly first, :func:`to_radians`)."""
+    if parameter.kind == "angle" and value is not None:
+        return to_radians(value, f"--{parameter.name.replace('_', '-')}")
+    return value
 
 
 def _number(value: float):
@@ -121,16 +185,26 @@ def _number(value: float):
 
 
 def kinematic_table(mechanism: Mechanism, solution: Solution,
-                    points: Sequence[tuple[str, str, float, float]] = ()) -> list[dict]:
-    """Rows of the kinematic table: one dict per crank position, keys as in docs/DESIGN.md's JSON."""
+                    points: Sequence[tuple[str, str, float, float]] = (), phi_deg: Any = None) -> list[dict]:
+    """Rows of the kinematic table: one dict per crank position, keys as in docs/DESIGN.md's JSON.
+
+    ``phi_deg``, if given, holds the crank angles as they were asked for (°, one per position of the
+    solution, before the exact reduction of :func:`to_radians`): they are printed as ``phi_deg`` and as
+    the crank's ``angle_deg``, so that ``--angles 1e15:…`` shows 1e15°, not its remainder 280°. By
+    default both come from the solution's φ.
+    """
     extra = {name: solution.point_on(link, u, w) for name, link, u, w in points}
     all_points = {name: solution.point(name) for name in solution.point_names} | extra
+    asked = np.degrees(solution.phi) if phi_deg is None else np.asarray(phi_deg, dtype=float).reshape(-1)
+    # the crank: the link whose angle is φ itself
+    crank = {name for name in solution.angle_names if np.array_equal(solution.angle(name).value, solution.phi)}
     rows = []
     for i in range(len(solution)):
         links = {}
         for name in solution.angle_names:
             a = solution.angle(name)
-            links[name] = {"angle_deg": _number(np.degrees(a.value[i])), "omega": _number(a.omega[i]),
+            degrees = asked[i] if name in crank else np.degrees(a.value[i])
+            links[name] = {"angle_deg": _number(degrees), "omega": _number(a.omega[i]),
                            "alpha": _number(a.alpha[i])}
         pts = {}
         for name, p in all_points.items():
@@ -143,7 +217,7 @@ def kinematic_table(mechanism: Mechanism, solution: Solution,
             sliders[name] = {"s": _number(s.value[i]), "v": _number(s.velocity[i]), "a": _number(s.acceleration[i])}
             for key, values in solution.extras.get(name, {}).items():
                 sliders[name][key] = _number(values[i])
-        rows.append({"phi_deg": _number(round(float(np.degrees(solution.phi[i])), 9)), "links": links, "points": pts,
+        rows.append({"phi_deg": _number(round(float(asked[i]), 9)), "links": links, "points": pts,
                      "sliders": sliders})
     return rows
 
@@ -180,21 +254,30 @@ class _Table:
     per block that writes it.
     """
 
-    def __init__(self, mechanism: Mechanism, phi_chunks, omega: float, alpha: float,
-                 points: Sequence[tuple[str, str, float, float]]):
-        self.mechanism, self.phi_chunks, self.omega, self.alpha, self.points = mechanism, phi_chunks, omega, alpha, points
+    def __init__(self, mechanism: Mechanism, degree_chunks: Callable[[], Iterator[np.ndarray]], omega: float,
+                 alpha: float, points: Sequence[tuple[str, str, float, float]], asked: dict[str, Any] | None = None):
+        """``degree_chunks()`` yields the crank angles in degrees as asked, a chunk at a time; ``asked`` holds the
+        mechanism's parameters as given on the command line (angles in degrees), for the JSON head."""
+        self.mechanism, self.degree_chunks, self.omega, self.alpha = mechanism, degree_chunks, omega, alpha
+        self.points, self.asked = points, asked
 
-    def solutions(self, order: int = 2):
-        """The solution of each chunk of positions (singular positions: unbounded values, no warning)."""
+    def phi_chunks(self) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+        """Each chunk's crank angles as asked (°) and as solved (rad, reduced exactly: :func:`to_radians`)."""
+        for degrees in self.degree_chunks():
+            yield degrees, to_radians(degrees, "--angles")
+
+    def solutions(self, order: int = 2) -> Iterator[tuple[np.ndarray, Solution]]:
+        """The solution of each chunk of positions, with its angles as asked (°) (singular positions:
+        unbounded values, no warning)."""
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SingularPositionWarning)  # unbounded values print as — / null
-            for phi in self.phi_chunks():
-                yield self.mechanism.solve(phi, self.omega, self.alpha, order=order)
+            for degrees, phi in self.phi_chunks():
+                yield degrees, self.mechanism.solve(phi, self.omega, self.alpha, order=order)
 
     def rows(self):
         """The rows of each chunk (lists of dicts, keys as in docs/DESIGN.md's JSON)."""
-        for solution in self.solutions():
-            yield kinematic_table(self.mechanism, solution, self.points)
+        for degrees, solution in self.solutions():
+            yield kinematic_table(self.mechanism, solution, self.points, phi_deg=degrees)
 
     def check(self) -> list[str]:
         """Solve every position once (positions only) before anything is written: an input that cannot be
@@ -203,15 +286,22 @@ class _Table:
         failed: list[np.ndarray] = []
         first: AssemblyError | None = None
         joints: list[str] = []
-        for index, phi in enumerate(self.phi_chunks()):
+        for index, (degrees, phi) in enumerate(self.phi_chunks()):
             try:
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", SingularPositionWarning)
                     # the first chunk to the full order, so that the crank's speed is checked too
-                    joints = self.mechanism.solve(phi, self.omega, self.alpha, order=0 if index else 2).point_names
+                    solution = self.mechanism.solve(phi, self.omega, self.alpha, order=0 if index else 2)
+                joints = solution.point_names
+                if not index:    # the points' distances too (the links are named by _table, after this)
+                    for _, link, u, w in self.points:
+                        if link in self.mechanism.links:
+                            solution.point_on(link, u, w)
             except AssemblyError as error:
                 first = first or error
-                failed.append(np.atleast_1d(error.angles if error.angles is not None else phi))
+                # named as asked (1e15°, not its remainder 280°)
+                where = np.isin(phi, error.angles) if error.angles is not None else np.ones(phi.shape, bool)
+                failed.append(np.radians(degrees[where]) if where.any() or error.angles is None else error.angles)
         if first is not None:
             raise AssemblyError(first.reason, np.concatenate(failed), first.valid_range)
         return joints
@@ -220,7 +310,8 @@ class _Table:
         # as the command line takes them: angles in degrees, named like the rows' angle_deg
         mechanism = self.mechanism
         parameters = {f"{p.name}_deg" if p.kind == "angle" else p.name:
-                      math.degrees(cast(float, value)) if p.kind == "angle" else value
+                      (self.asked[p.name] if self.asked and p.name in self.asked
+                       else math.degrees(cast(float, value)) if p.kind == "angle" else value)
                       for p, value in zip(mechanism.cli_parameters, mechanism.parameters().values())}
         if not mechanism.cli_parameters:      # a linkage file: its name and its path
             parameters = dict(mechanism.parameters())
@@ -237,13 +328,17 @@ class _Table:
         out.write("\n ]\n}" if separator == ",\n" else "]\n}")
 
     def write_csv(self, out) -> None:
-        writer = None
+        """CSV through the course tools' one writer: names (a point's, a linkage file's joints) are text made
+        safe for a spreadsheet (no cell starts a formula), numbers stay numbers."""
+        from .course.csvtext import csv_lines
+
+        header: list[str] | None = None
         for rows in self.rows():
             flats = [_flat(r) for r in rows]
-            if writer is None:
-                writer = csv.DictWriter(out, fieldnames=list(flats[0]), lineterminator="\n")
-                writer.writeheader()
-            writer.writerows({k: ("" if v is None else v) for k, v in f.items()} for f in flats)
+            if header is None:
+                header = list(flats[0])
+                out.write(csv_lines([header]))
+            out.write(csv_lines([[f.get(k) for k in header] for f in flats]))
 
     def _columns(self) -> dict[tuple[str, str], dict[str, tuple[float, dict[int, float], bool]]]:
         """Per block and column: the largest |value|, the largest |value| per printed width, and whether a
@@ -299,21 +394,20 @@ def _table(args: argparse.Namespace, out) -> None:
         cls = registry[args.mechanism]
         mechanism = cls(**{p.name: _class_value(p, getattr(args, p.name)) for p in cls.cli_parameters})
     positions = 12 if args.positions is None else args.positions
-    if not args.angles and not 1 <= positions <= MAX_POSITIONS:
+    if args.angles is None and not 1 <= positions <= MAX_POSITIONS:
         raise InvalidParameterError("--positions", positions, f"a whole number from 1 to {MAX_POSITIONS}")
     points = [parse_point(p) for p in args.point]
-    if args.angles:
-        angles = parse_angles(args.angles)
-        count = angles.size
+    first, step, count = _angle_range(args.angles) if args.angles is not None else (0.0, 360.0 / positions, positions)
 
-        def phi_chunks():
-            for start in range(0, count, CHUNK):
-                yield angles[start:start + CHUNK]
-    else:
-        def phi_chunks():
-            for start in range(0, positions, CHUNK):
-                yield np.radians(np.arange(start, min(start + CHUNK, positions)) * 360.0 / positions)
-    table = _Table(mechanism, phi_chunks, args.omega, args.alpha, points)
+    def degree_chunks() -> Iterator[np.ndarray]:       # made a chunk at a time: no array over all positions
+        for start in range(0, count, CHUNK):
+            if args.angles is not None:
+                yield _angles_between(first, step, start, min(start + CHUNK, count))
+            else:
+                yield np.arange(start, min(start + CHUNK, count)) * 360.0 / positions
+
+    asked = {p.name: getattr(args, p.name) for p in mechanism.cli_parameters} if args.mechanism != "file" else None
+    table = _Table(mechanism, degree_chunks, args.omega, args.alpha, points, asked)
     joints = table.check()
     for name, link, _, _ in points:
         if name in joints or [n for n, *_ in points].count(name) > 1:
@@ -326,9 +420,20 @@ def _table(args: argparse.Namespace, out) -> None:
         out.write("\n")
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, but help written to standard output fails as the commands' output does (an
+    :class:`_OutputError`), instead of being dropped silently when the output is full or closed."""
+
+    def _print_message(self, message: str, file: Any = None) -> None:
+        if message and file is not None and file is sys.stdout:
+            _Output(file).write(message)
+        else:
+            super()._print_message(message, file)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``python -m mechanisms``."""
-    parser = argparse.ArgumentParser(prog="python -m mechanisms",
+    parser = _Parser(prog="python -m mechanisms",
                                      description="Kinematics of planar linkage mechanisms: the book's tool.")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
     table = commands.add_parser("table", help="kinematic table of a mechanism or a linkage file over crank positions",
@@ -366,7 +471,7 @@ def _add_table_options(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--alpha", type=_cli_number, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
     where = sub.add_mutually_exclusive_group()
     where.add_argument("--angles", help="crank angles START:STOP:STEP in degrees, stop excluded")
-    where.add_argument("--positions", type=int, default=None, help="N positions evenly over a turn (default 12)")
+    where.add_argument("--positions", type=_cli_whole, default=None, help="N positions evenly over a turn (default 12)")
     sub.add_argument("--point", action="append", default=[], metavar="NAME=LINK:U[,W]",
                      help="a point fixed to LINK, U m along it from its first joint, W m to its left")
     sub.add_argument("--format", choices=("text", "csv", "json"), default="text")
@@ -389,7 +494,7 @@ def _add_bench_command(commands) -> None:
                     "an extended-precision reference. pylinkage is timed too when installed (the bench extra).")
     bench.add_argument("--sizes", default="1000,100000,1000000", metavar="N,N,…",
                        help="numbers of crank positions (default 1000,100000,1000000)")
-    bench.add_argument("--repeat", type=int, default=3, metavar="R", help="best of R runs (default 3)")
+    bench.add_argument("--repeat", type=_cli_whole, default=3, metavar="R", help="best of R runs (default 3)")
     bench.add_argument("--format", choices=("text", "json"), default="text")
     bench.add_argument("--only", choices=("methods", "startup"), default=None,
                        help="only the methods' times, or only the start-up times (import mechanisms, a 12-row "
@@ -399,14 +504,14 @@ def _add_bench_command(commands) -> None:
 def _bench(args: argparse.Namespace) -> str:
     from . import bench
 
-    try:
-        sizes = [int(v) for v in args.sizes.split(",")]
-    except ValueError:
-        raise InvalidParameterError("--sizes", args.sizes, "whole numbers N,N,… ≥ 1") from None
-    if not sizes or min(sizes) < 1:
-        raise InvalidParameterError("--sizes", args.sizes, "whole numbers N,N,… ≥ 1")
-    if args.repeat < 1:
-        raise InvalidParameterError("--repeat", args.repeat, "a whole number ≥ 1")
+    sizes_needed = f"whole numbers N,N,… from 1 to {MAX_POSITIONS}"
+    if not all(_WHOLE.fullmatch(v.strip()) for v in args.sizes.split(",")):
+        raise InvalidParameterError("--sizes", args.sizes, sizes_needed)
+    sizes = [int(v) for v in args.sizes.split(",")]
+    if not 1 <= min(sizes) <= max(sizes) <= MAX_POSITIONS:   # each size is an array of that many positions
+        raise InvalidParameterError("--sizes", args.sizes, sizes_needed)
+    if not 1 <= args.repeat <= MAX_REPEAT:
+        raise InvalidParameterError("--repeat", args.repeat, f"a whole number from 1 to {MAX_REPEAT}")
     report: dict[str, Any] = bench.run(sizes, args.repeat) if args.only != "startup" else {}
     if args.only != "methods":
         report["startup"] = bench.startup_times(max(args.repeat, 3))
@@ -443,15 +548,15 @@ def _add_course_commands(commands) -> None:
                     "sheet for each (HTML and Markdown), an answer form for each, and one answer key (key.csv).")
     assign.add_argument("mechanism", choices=_AssignableMechanisms(), metavar="MECHANISM",
                         help="one of %(choices)s")
-    assign.add_argument("--students", type=int, default=None,
+    assign.add_argument("--students", type=_cli_whole, default=None,
                         help="number of students N (variants s01 … sNN); with --roster, the list's length")
     assign.add_argument("--roster", metavar="CLASS.csv",
                         help="the class list: a CSV file with a name (or first and last name), e-mail and/or "
                              "identifier column, one student a row (a Moodle grading worksheet will do); the "
                              "sheets carry the names, the key the names, e-mails and identifiers")
-    assign.add_argument("--seed", type=int, default=None,
+    assign.add_argument("--seed", type=_cli_whole, default=None,
                         help="seed of the random variants (default: a new one, printed so the run can be repeated)")
-    assign.add_argument("--positions", type=int, default=3, help="crank positions per variant (default 3)")
+    assign.add_argument("--positions", type=_cli_whole, default=3, help="crank positions per variant (default 3)")
     assign.add_argument("--out", default="assignment", help="output folder (default ./assignment)")
     check = commands.add_parser(
         "check", help="grade answer files against an answer key",
@@ -459,7 +564,7 @@ def _add_course_commands(commands) -> None:
                     "right, what is wrong and by how much, and which answers are missing or unreadable.")
     check.add_argument("key", metavar="KEY.csv", help="the answer key written by `assign`")
     check.add_argument("answers", metavar="ANSWERS.csv", nargs="+", help="one or more answer files")
-    check.add_argument("--relative", type=float, default=100 * DEFAULT_RELATIVE, metavar="PERCENT",
+    check.add_argument("--relative", type=_cli_number, default=100 * DEFAULT_RELATIVE, metavar="PERCENT",
                        help=f"relative tolerance in %% (default {100 * DEFAULT_RELATIVE:g}); each kind of quantity "
                             "also has an absolute floor")
     check.add_argument("--marks", metavar="FILE.csv", help="also write every mark to this CSV file")
@@ -508,8 +613,9 @@ def _check(args: argparse.Namespace) -> tuple[str, int]:
         raise InvalidParameterError("--relative", args.relative, "a percentage from 0 to less than 100")
     report = check_files(args.key, args.answers, relative=args.relative / 100.0)
     if args.marks:
-        with open(args.marks, "w", encoding="utf8", newline="") as handle:
-            handle.write(report.csv())
+        from .course.csvtext import write_file
+
+        write_file(args.marks, report.csv(), "--marks file")
     text = report.text()
     if args.moodle:
         from .course.moodle import fill_worksheet
@@ -523,8 +629,9 @@ def _check(args: argparse.Namespace) -> tuple[str, int]:
     if args.grades:
         from .course.moodle import grades_csv
 
-        with open(args.grades, "w", encoding="utf8", newline="") as handle:
-            handle.write(grades_csv(report))
+        from .course.csvtext import write_file
+
+        write_file(args.grades, grades_csv(report), "--grades file")
         text += f"\nGrades (percent) and feedback written to {args.grades}."
     return text, (1 if report.problems else 0)
 
@@ -555,49 +662,126 @@ def _file_table(argv: list[str]) -> list[str]:
     return argv
 
 
+class _OutputError(Exception):
+    """Standard output cannot be written: it is closed, its disk is full, its reader has gone."""
+
+    def __init__(self, cause: BaseException | None):
+        self.cause = cause
+        super().__init__("standard output is closed" if cause is None else
+                         f"cannot write to standard output: {getattr(cause, 'strerror', None) or cause}")
+
+
+class _Output:
+    """Standard output as the commands write it: every failure to write becomes an :class:`_OutputError`, so
+    that ``main`` answers it in one place (and a failure to read a file is never taken for it)."""
+
+    def __init__(self, stream: Any):
+        self.stream = stream
+
+    def write(self, text: str) -> None:
+        if self.stream is None:
+            raise _OutputError(None)
+        try:
+            self.stream.write(text)
+        except OSError as error:
+            raise _OutputError(error) from None
+        except ValueError:                       # a stream closed in this process
+            raise _OutputError(None) from None
+
+    def flush(self) -> None:
+        if self.stream is not None:
+            try:
+                self.stream.flush()
+            except OSError as error:
+                raise _OutputError(error) from None
+            except ValueError:
+                raise _OutputError(None) from None
+
+
+def _error(message: str) -> None:
+    """A one-line message on standard error (if there is one to write to)."""
+    try:
+        if sys.stderr is not None:
+            sys.stderr.write(f"error: {message}\n")
+            sys.stderr.flush()
+    except (OSError, ValueError):
+        pass
+
+
+def _output_failed(error: _OutputError) -> int:
+    """The answer to standard output that cannot be written: a broken pipe (the reader, e.g. ``head``, stopped
+    early) ends quietly with status 1, as Python's documentation recommends; a closed or full output is said on
+    standard error, with status 2. Either way the process's own output is pointed at the null device, so that
+    Python's last flush at exit finds nothing to fail on (it would print a traceback)."""
+    stream = sys.stdout
+    if stream is not None and stream is sys.__stdout__:
+        try:
+            null = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(null, stream.fileno())
+            os.close(null)
+        except (OSError, ValueError):
+            pass
+    if isinstance(error.cause, BrokenPipeError):
+        return 1
+    _error(str(error))
+    return 2
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 2 bad input).
 
     ``check`` returns 1 when it graded the answers but found problems in the answer files
-    (unknown student ids, repeated rows …), and 2 when a file could not be graded at all.
+    (unknown student ids, repeated rows …), and 2 when a file could not be graded at all. Output that
+    cannot be written gives 2 and a message (a closed or full standard output), or 1 and no message (a
+    broken pipe: the reader stopped early); never a traceback.
     """
+    out = _Output(sys.stdout)
+    try:
+        status = _main(argv, out)
+        out.flush()
+    except _OutputError as error:
+        return _output_failed(error)
+    return status
+
+
+def _main(argv: Sequence[str] | None, out: _Output) -> int:
+    """:func:`main`, writing its results to ``out``."""
     parser = build_parser()
     try:     # a usage error (argparse has printed it) or --help: an exit status, not an exception
         args = parser.parse_args(_file_table(_join_negative_pairs(sys.argv[1:] if argv is None else list(argv))))
     except SystemExit as stop:
         return stop.code if isinstance(stop.code, int) else 2
     if args.command is None:
-        parser.print_help()
+        out.write(parser.format_help())
         return 0
     if args.command in ("bench", "structure"):
         try:
-            print(_bench(args) if args.command == "bench" else _structure(args))
+            text = _bench(args) if args.command == "bench" else _structure(args)
         except MechanismError as error:
-            print(f"error: {error}", file=sys.stderr)
+            _error(str(error))
             return 2
+        out.write(text + "\n")
         return 0
     if args.command in ("assign", "check"):
         try:
             if args.command == "assign":
-                print(_assign(args))
-                return 0
-            text, status = _check(args)
-            print(text)
-            return status
+                text, status = _assign(args), 0
+            else:
+                text, status = _check(args)
         except MechanismError as error:
-            print(f"error: {error}", file=sys.stderr)
+            _error(str(error))
             return 2
         except OSError as error:
-            print(f"error: {error.filename or ''}: {error.strerror}", file=sys.stderr)
+            _error(f"{error.filename or ''}: {error.strerror}")
             return 2
+        out.write(text + "\n")
+        return status
     if args.command == "table" and args.mechanism is None:
-        print("error: name a mechanism: " + ", ".join(sorted(registry)) + " (see `table --help`)", file=sys.stderr)
+        _error("name a mechanism: " + ", ".join(sorted(registry)) + " (see `table --help`)")
         return 2
     try:
-        _table(args, sys.stdout)
+        _table(args, out)
     except MechanismError as error:
-        print(f"error: {error}", file=sys.stderr)
+        _error(str(error))
         return 2
-    except BrokenPipeError:  # the reader (e.g. `head`) stopped early: not an error
-        sys.stdout = open(os.devnull, "w")
     return 0

@@ -45,7 +45,9 @@ def test_help_runs_as_a_module():
 
 
 def test_parse_angles_in_degrees_stop_excluded():
-    np.testing.assert_allclose(cli.parse_angles("0:360:90"), np.radians([0, 90, 180, 270]))
+    # as asked in degrees; in radians reduced to (−π, π] (270° is −90°, by hand)
+    np.testing.assert_array_equal(cli.parse_angles_deg("0:360:90"), [0.0, 90.0, 180.0, 270.0])
+    np.testing.assert_allclose(cli.parse_angles("0:360:90"), np.radians([0, 90, 180, -90]))
     for bad in ("0:360", "a:b:c", "0:360:0", "0:360:-30", "0:nan:10"):
         with pytest.raises(InvalidParameterError, match="--angles"):
             cli.parse_angles(bad)

@@ -172,3 +172,116 @@ def test_bad_flywheel_input_names_the_parameter():
         dynamics.flywheel_inertia(np.nan, 5.0, 0.02)
     # by hand: J = ΔE/(δ ω_m²) = 10/(0.02·25) = 20 kg·m²
     assert dynamics.flywheel_inertia(10.0, 5.0, 0.02) == pytest.approx(20.0)
+
+
+# --- issue 28: every input a right answer or the package's error -------------------------------------------
+
+def test_a_negative_flywheel_is_refused_by_name():
+    with pytest.raises(InvalidParameterError, match="flywheel"):
+        dynamics.reduced_model(CRANK_SLIDER, MASSES, [0.0, 1.0], flywheel=-10.0)
+    with pytest.raises(InvalidParameterError, match="flywheel"):
+        dynamics.simulate(CRANK_SLIDER, MASSES, 1.0, duration=0.1, steps=2, flywheel=[0.1, -1.0])
+
+
+def test_zero_revolutions_is_refused_by_name():
+    phi = np.linspace(0.0, 6 * math.pi, 601)
+    run = dynamics.Run(phi / 100.0, phi, 100.0 + 5.0 * np.sin(phi))
+    for bad in (0, -1, 1.5, "one", None, True, np.nan):
+        with pytest.raises(InvalidParameterError, match="revolutions"):
+            dynamics.speed_fluctuation(run, revolutions=bad)
+
+
+def test_a_clockwise_run_has_the_fluctuation_of_its_mirror_image():
+    # by hand: the mirror image of ω = 100 + 5 sin φ (counter-clockwise) is φ → −φ, ω → −ω. Its speed |ω| takes the
+    # same values, 95 … 105, so δ = (105 − 95)/100 = 0.1 again; in the run's sense ω_max = −105 (the fastest),
+    # ω_min = −95, ω_m = −100, and (ω_max − ω_min)/ω_m = (−10)/(−100) = 0.1.
+    phi = np.linspace(0.0, 6 * math.pi, 3601)
+    mirrored = dynamics.Run(phi / 100.0, -phi, -(100.0 + 5.0 * np.sin(phi)))
+    f = dynamics.speed_fluctuation(mirrored, revolutions=2)
+    assert (f.maximum, f.minimum, f.mean) == pytest.approx((-105.0, -95.0, -100.0), abs=1e-5)
+    assert f.coefficient == pytest.approx(0.1, abs=1e-7)
+
+
+def test_a_simulated_clockwise_run_mirrors_the_counter_clockwise_one():
+    # the axial crank-slider without gravity is symmetric about the x axis: J_red(−φ) = J_red(φ) and
+    # J_red'(−φ) = −J_red'(φ), so J φ_tt + ½ J' φ_t² = M_d is unchanged by φ → −φ, M_d → −M_d. The clockwise run
+    # is the mirror image of the counter-clockwise one, and its δ the same.
+    drive = 3.0
+    ccw = dynamics.simulate(CRANK_SLIDER, MASSES, drive, duration=0.25, steps=250, omega0=60.0, gravity=0.0)
+    cw = dynamics.simulate(CRANK_SLIDER, MASSES, -drive, duration=0.25, steps=250, omega0=-60.0, gravity=0.0)
+    assert np.allclose(cw.omega, -ccw.omega, rtol=1e-12, atol=0)
+    a, b = dynamics.speed_fluctuation(ccw), dynamics.speed_fluctuation(cw)
+    assert b.coefficient == pytest.approx(a.coefficient, rel=1e-9)
+    assert a.coefficient > 0.01                      # the speed does fluctuate
+    assert (b.maximum, b.minimum, b.mean) == pytest.approx((-a.maximum, -a.minimum, -a.mean), rel=1e-9)
+
+
+def test_a_run_whose_crank_turns_back_has_no_fluctuation_coefficient():
+    t = np.linspace(0.0, 10.0, 2001)
+    phi = 10.0 * t + 3.0 * np.sin(5.0 * t)          # φ_t = 10 + 15 cos 5t < 0 at times: it turns back
+    with pytest.raises(InvalidParameterError, match="run"):
+        dynamics.speed_fluctuation(dynamics.Run(t, phi, 10.0 + 15.0 * np.cos(5.0 * t)))
+    with pytest.raises(InvalidParameterError, match="run"):
+        dynamics.speed_fluctuation("a run")
+    with pytest.raises(InvalidParameterError, match="run.omega"):
+        dynamics.speed_fluctuation(dynamics.Run(t, phi, np.full_like(t, np.nan)))
+
+
+@pytest.mark.parametrize("keyword, value", [
+    ("steps", "ten"), ("steps", None), ("steps", True), ("steps", 2.5), ("steps", 0), ("steps", -3),
+    ("steps", np.nan), ("steps", 1e12), ("steps", [10]), ("duration", "1"), ("duration", np.inf),
+    ("duration", 0.0), ("duration", None), ("phi0", np.nan), ("phi0", "0"), ("omega0", 1e300), ("omega0", "fast"),
+    ("flywheel", "heavy"), ("flywheel", np.inf), ("gravity", "down"), ("gravity", np.nan), ("loads", "none"),
+    ("loads", [1.0]), ("springs", [None]), ("masses", None), ("masses", {"crank": 1.0}), ("drive", "motor"),
+    ("drive", np.nan), ("drive", [1.0, 2.0, 3.0]), ("mechanism", "crank-slider"),
+])
+def test_bad_simulation_input_names_the_parameter(keyword, value):
+    arguments = dict(mechanism=CRANK_SLIDER, masses=MASSES, drive=1.0, duration=0.01, steps=3)
+    arguments[keyword] = value
+    with pytest.raises(InvalidParameterError, match=keyword):
+        dynamics.simulate(**arguments)
+
+
+def test_a_huge_number_of_steps_is_refused_before_any_allocation():
+    # 1e12 steps would be 16 TB of states; with 4 runs side by side the bound is on the states kept in all
+    with pytest.raises(InvalidParameterError, match="steps"):
+        dynamics.simulate(CRANK_SLIDER, MASSES, 1.0, duration=1.0, steps=10**12)
+    with pytest.raises(InvalidParameterError, match="steps"):
+        dynamics.simulate(CRANK_SLIDER, MASSES, 1.0, duration=1.0, steps=dynamics.MAX_SAMPLES // 2,
+                          flywheel=[0.0, 0.1, 0.2, 0.3])
+
+
+def test_a_motion_that_runs_away_is_an_error_not_nan():
+    with pytest.raises(mech.MechanismError, match="unbounded"):
+        dynamics.simulate(CRANK_SLIDER, MASSES, 1e300, duration=1.0, steps=4)
+
+
+def test_no_inertia_is_refused_where_the_motion_is_undetermined():
+    # only the slider has mass: J_red = m (ds/dφ)² = 0 at the dead centres φ = 0, π (by hand)
+    with pytest.raises(InvalidParameterError, match="J_red = 0"):
+        dynamics.angular_acceleration(CRANK_SLIDER, {"B": energy.LinkMass(1.0)}, [0.0, 1.0], 10.0, 1.0)
+
+
+@pytest.mark.parametrize("function, keyword, value", [
+    ("required_torque", "omega", "fast"), ("required_torque", "omega", [1.0, 2.0, 3.0]),
+    ("required_torque", "alpha", None), ("required_torque", "omega", 1e300), ("required_torque", "flywheel", -1.0),
+    ("angular_acceleration", "omega", "fast"), ("angular_acceleration", "drive", "motor"),
+    ("angular_acceleration", "t", "now"), ("reduced_model", "phi", "zero"), ("reduced_model", "masses", [1.0]),
+    ("reduced_model", "gravity", "down"), ("reduced_model", "loads", [energy.LinkMass(1.0)]),
+])
+def test_bad_input_of_the_equation_of_motion_names_the_parameter(function, keyword, value):
+    arguments = dict(mechanism=CRANK_SLIDER, masses=MASSES, phi=[0.0, 1.0])
+    if function != "reduced_model":
+        arguments["omega"] = 10.0
+    if function == "angular_acceleration":
+        arguments["drive"] = 1.0
+    arguments[keyword] = value
+    with pytest.raises(InvalidParameterError, match=keyword):
+        getattr(dynamics, function)(**arguments)
+
+
+def test_energy_swing_and_flywheel_beyond_the_numbers_are_refused():
+    with pytest.raises(InvalidParameterError, match="torque"):
+        dynamics.energy_swing([0.0, 1e300, 2e300], [1e308, 1e307, 1e308])   # work ~1e608 J
+    with pytest.raises(InvalidParameterError, match="mean_speed"):
+        dynamics.flywheel_inertia(1.0, 1e-200, 0.01)     # ω_m² underflows to 0

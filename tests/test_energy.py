@@ -236,5 +236,60 @@ def test_unknown_body_and_missing_derivatives_raise():
         energy.inertia_forces(m.solve(_phi(), order=1), {"crank": energy.LinkMass(1.0)})
     with pytest.raises(InvalidParameterError, match="omega"):
         energy.driving_torque(m.solve(_phi(), omega=0.0), {"crank": energy.LinkMass(1.0)})
-    with pytest.raises(TypeError):
+    with pytest.raises(InvalidParameterError, match=r"loads\[0\] must be a Force\(...\) or a Torque"):
         energy.applied_power(m.solve(_phi()), ["a load"])
+
+
+# --- issue 28: bad input is the package's error naming it ---------------------------------------------------
+
+@pytest.mark.parametrize("make, named", [
+    (lambda: energy.Force("B", "100 N"), "the force on 'B'"),
+    (lambda: energy.Force("B", np.nan), "the force on 'B'"),
+    (lambda: energy.Force("B", None), "the force on 'B'"),
+    (lambda: energy.Force(3, 1.0), "body"),
+    (lambda: energy.Force("B", 1.0, along="far"), "along"),
+    (lambda: energy.Torque("crank", True), "the torque on 'crank'"),
+    (lambda: energy.Torque("crank", 1j), "the torque on 'crank'"),
+    (lambda: energy.Spring("B", "1+2j", 10.0), "anchor"),
+    (lambda: energy.Spring("B", 10**400, 10.0), "anchor"),
+    (lambda: energy.Spring("B", complex(np.inf, 0), 10.0), "anchor"),
+    (lambda: energy.Spring("B", 0j, -1.0), "stiffness"),
+    (lambda: energy.LinkMass("1"), "mass"),
+    (lambda: energy.LinkMass(-1.0), "mass"),
+])
+def test_bad_loads_springs_and_masses_are_refused_when_made(make, named):
+    with pytest.raises(InvalidParameterError, match=named):
+        make()
+
+
+def test_bad_arguments_of_the_energy_functions_name_the_argument():
+    m = mech.CrankSlider(0.08, 0.3)
+    sol = m.solve(_phi(), omega=10.0)
+    masses = {"crank": energy.LinkMass(1.0)}
+    cases = [
+        (lambda: energy.kinetic_energy(sol, None), "masses"),
+        (lambda: energy.kinetic_energy(sol, {"crank": 1.0}), "masses"),
+        (lambda: energy.kinetic_energy("solution", masses), "solution"),
+        (lambda: energy.potential_energy(sol, masses, gravity="down"), "gravity"),
+        (lambda: energy.potential_energy(sol, masses, springs=energy.Spring("B", 0j, 1.0)), "springs"),
+        (lambda: energy.applied_power(sol, energy.Force("B", 1.0)), "loads"),
+        (lambda: energy.load_values("load", sol), "load"),
+        (lambda: energy.load_values(energy.Force("B", lambda s: "x"), sol), "the force on 'B'"),
+        (lambda: energy.load_values(energy.Force("B", lambda s: np.ones(3)), sol), "the force on 'B'"),
+        (lambda: energy.load_values(energy.Torque("crank", np.ones(4)), sol), "the torque on 'crank'"),
+        (lambda: energy.body_point(sol, "B", along="x"), "along"),
+        (lambda: energy.body_point(sol, ["B"]), "body"),
+        (lambda: energy.centre_of_mass(sol, "crank", 1.0), "properties"),
+        (lambda: energy.reduced_inertia("crank-slider", masses, _phi()), "mechanism"),
+        (lambda: energy.energy_balance(sol, masses, drive="motor"), "drive"),
+        (lambda: energy.energy_balance(sol, masses, drive=np.ones(5)), "drive"),
+    ]
+    for call, named in cases:
+        with pytest.raises(InvalidParameterError, match=named):
+            call()
+
+
+def test_an_unknown_body_is_a_lookup_error_naming_the_bodies():
+    sol = mech.CrankSlider(0.08, 0.3).solve(_phi())
+    with pytest.raises(mech.UnknownNameError, match="rocker.*known: crank, coupler"):
+        energy.body_point(sol, "rocker")

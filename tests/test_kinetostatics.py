@@ -171,3 +171,27 @@ def test_singular_positions_give_nan_and_bad_input_raises():
     lam = mech.LambdaMechanism(2.0, 2.5, 2.0)
     with pytest.raises(InvalidParameterError, match="CrankSlider or a FourBar"):
         kinetostatics.joint_forces(lam, lam.solve(_phi()), {})
+
+
+# --- issue 28: bad input is the package's error naming it ---------------------------------------------------
+
+def test_bad_arguments_of_joint_forces_name_the_argument():
+    m = mech.CrankSlider(0.08, 0.3)
+    sol = m.solve(np.linspace(0.0, 6.0, 7), omega=10.0)
+    masses = {"crank": energy.LinkMass(1.0)}
+    cases = [
+        (lambda: kinetostatics.joint_forces("crank-slider", sol, masses), "mechanism"),
+        (lambda: kinetostatics.joint_forces(m, None, masses), "solution"),
+        (lambda: kinetostatics.joint_forces(m, sol, [1.0]), "masses"),
+        (lambda: kinetostatics.joint_forces(m, sol, masses, loads=["push"]), r"loads\[0\]"),
+        (lambda: kinetostatics.joint_forces(m, sol, masses, springs="none"), "springs"),
+        (lambda: kinetostatics.joint_forces(m, sol, masses, gravity="down"), "gravity"),
+        (lambda: kinetostatics.joint_forces(m, sol, masses, loads=[energy.Torque("rocker", 1.0)]), "body"),
+    ]
+    for call, named in cases:
+        with pytest.raises(InvalidParameterError, match=named):
+            call()
+    with pytest.raises(mech.UnknownNameError, match="no joint named 'Z'"):
+        kinetostatics.joint_forces(m, sol, masses).force("Z")
+    with pytest.raises(mech.UnknownNameError, match="joint"):
+        kinetostatics.joint_forces(m, sol, masses).force(["A"])

@@ -16,6 +16,7 @@ small. numpy only.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence, Union
 
@@ -23,10 +24,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..linkages.base import Mechanism
-from ..core.errors import InvalidParameterError
-from ..core.validate import require_finite, require_finite_array, require_positive, require_non_negative
-from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, applied_power, kinetic_energies,
-                     potential_energy)
+from ..core.errors import InvalidParameterError, MechanismError, describe_angles
+from ..core.validate import (ALPHA_MAX, OMEGA_MAX, require_angles, require_finite_array, require_positive,
+                             require_non_negative, require_rates)
+from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, _mechanism, applied_power,
+                     kinetic_energies, potential_energy)
 
 __all__ = [
     "ReducedModel",
@@ -42,6 +44,51 @@ __all__ = [
 ]
 
 Drive = Union[float, np.ndarray, Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]]
+
+MAX_SAMPLES = 10_000_000
+"""The most states (time steps + 1, times the runs side by side) :func:`simulate` keeps: 160 MB of φ and φ_t."""
+
+
+def _count(name: str, value: object, high: int) -> int:
+    """A whole number from 1 to ``high``: an integer (Python's or numpy's, not a bool) or a float without a
+    fractional part; else :class:`InvalidParameterError` naming it."""
+    requirement = f"a whole number from 1 to {high}"
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer, float, np.floating)):
+        raise InvalidParameterError(name, value, requirement)
+    if isinstance(value, (float, np.floating)) and not (math.isfinite(value) and float(value).is_integer()):
+        raise InvalidParameterError(name, value, requirement)
+    number = int(value)
+    if not 1 <= number <= high:
+        raise InvalidParameterError(name, value, requirement)
+    return number
+
+
+def _flywheel(flywheel: ArrayLike, shape: tuple[int, ...] | None = None) -> np.ndarray:
+    """J_fl (kg·m²): finite numbers ≥ 0, one or (with ``shape``) one per crank angle."""
+    array = (require_finite_array("flywheel", flywheel, "kg·m²") if shape is None
+             else require_rates("flywheel", flywheel, shape, np.inf, "kg·m²"))
+    if np.any(array < 0.0):
+        raise InvalidParameterError("flywheel", array[array < 0.0][:3].tolist() if array.ndim else array.item(),
+                                    "a moment of inertia ≥ 0 kg·m² (one, or one per crank angle)")
+    return array
+
+
+def _finite_model(model: "ReducedModel", singular: np.ndarray, phi: np.ndarray) -> None:
+    """Nothing unbounded outside the singular positions (which the solution has flagged and warned of)."""
+    bad = ~(np.isfinite(model.inertia) & np.isfinite(model.slope) & np.isfinite(model.resistance)) & ~singular
+    if np.any(bad):
+        raise MechanismError(f"J_red, dJ_red/dφ or M_c is beyond the range of floating-point numbers at crank "
+                             f"angle(s) {describe_angles(phi[bad])}: masses, loads, springs or a flywheel too large")
+
+
+def _acceleration(model: "ReducedModel", torque: np.ndarray, omega: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """φ_tt = (M_d − M_c − ½ J_red' φ_t²)/J_red, refused where J_red = 0 (the motion is then not determined)."""
+    still = np.broadcast_to(model.inertia <= 0.0, np.broadcast_shapes(np.shape(model.inertia), np.shape(phi)))
+    if np.any(still):
+        raise InvalidParameterError(
+            "masses", f"J_red = 0 at crank angle(s) {describe_angles(np.broadcast_to(phi, still.shape)[still])}",
+            "masses (or a flywheel) that give the crank a reduced moment of inertia J_red > 0 at every angle")
+    return (torque - model.resistance - 0.5 * model.slope * omega**2) / model.inertia
 
 
 @dataclass(frozen=True)
@@ -88,13 +135,17 @@ def reduced_model(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: Arr
     φ) and the accelerations their derivatives, so that T = J_red/2, dT/dt = J_red'/2,
     dV/dt = dV/dφ and the power of the loads is M_red: all exact.
     """
-    solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=2)
+    solution = _mechanism(mechanism).solve(phi, omega=1.0, alpha=0.0, order=2)
     shape = np.shape(solution.phi)
+    wheel = _flywheel(flywheel, shape)
     parts = kinetic_energies(solution, masses).values()
     inertia = 2.0 * sum((p.value for p in parts), np.zeros(shape))
     slope = 2.0 * sum((p.velocity for p in parts), np.zeros(shape))
     resistance = potential_energy(solution, masses, gravity, springs).velocity - applied_power(solution, loads)
-    return ReducedModel(inertia + np.asarray(flywheel, dtype=float), slope, resistance)
+    with np.errstate(over="ignore", invalid="ignore"):
+        model = ReducedModel(inertia + wheel, slope, resistance)
+    _finite_model(model, np.asarray(solution.singular, dtype=bool), solution.phi)
+    return model
 
 
 def required_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: ArrayLike, omega: ArrayLike,
@@ -105,14 +156,18 @@ def required_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: A
     ``M_d = J_red φ_tt + ½ J_red' φ_t² + M_c``. Unlike the power balance it holds at φ_t = 0 too.
     """
     model = reduced_model(mechanism, masses, phi, loads, gravity, springs, flywheel)
-    omega, alpha = np.asarray(omega, dtype=float), np.asarray(alpha, dtype=float)
+    shape = np.shape(model.inertia)
+    omega = require_rates("omega", omega, shape, OMEGA_MAX, "1/s")
+    alpha = require_rates("alpha", alpha, shape, ALPHA_MAX, "1/s²")
     return model.inertia * alpha + 0.5 * model.slope * omega**2 + model.resistance
 
 
 def _drive_torque(drive: Drive, t, phi, omega) -> np.ndarray:
+    """M_d (N·m): ``drive`` itself or what it returns for (t, φ, φ_t); finite numbers, one or one per crank angle."""
+    shape = np.broadcast_shapes(np.shape(phi), np.shape(omega))
     if callable(drive):
-        return np.asarray(drive(t, phi, omega), dtype=float)
-    return np.asarray(drive, dtype=float)
+        return require_rates("drive", drive(t, phi, omega), shape, np.inf, "N·m, as the drive's function returns it")
+    return require_rates("drive", drive, shape, np.inf, "N·m")
 
 
 def angular_acceleration(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: ArrayLike, omega: ArrayLike,
@@ -125,9 +180,10 @@ def angular_acceleration(mechanism: Mechanism, masses: Mapping[str, LinkMass], p
     ``M_d(t, φ, φ_t)`` (a motor's characteristic).
     """
     model = reduced_model(mechanism, masses, phi, loads, gravity, springs, flywheel)
-    omega = np.asarray(omega, dtype=float)
-    torque = _drive_torque(drive, t, phi, omega)
-    return (torque - model.resistance - 0.5 * model.slope * omega**2) / model.inertia
+    phi = np.asarray(phi, dtype=float)
+    omega = require_rates("omega", omega, phi.shape, OMEGA_MAX, "1/s")
+    t = require_finite_array("t", t, "s")
+    return _acceleration(model, _drive_torque(drive, t, phi, omega), omega, phi)
 
 
 @dataclass(frozen=True)
@@ -183,42 +239,65 @@ def simulate(mechanism: Mechanism, masses: Mapping[str, LinkMass], drive: Drive,
     A load with a jump in its reduced torque lowers the order near the jump; choose Δt small
     against the angle over which the load changes.
     """
-    duration = float(duration)
-    if not (math.isfinite(duration) and duration > 0.0):
-        raise InvalidParameterError("duration", duration, "a finite time > 0 s")
-    if int(steps) != steps or steps < 1:
-        raise InvalidParameterError("steps", steps, "a whole number ≥ 1")
-    steps = int(steps)
-    phi, omega, flywheel = np.broadcast_arrays(np.asarray(phi0, dtype=float), np.asarray(omega0, dtype=float),
-                                               np.asarray(flywheel, dtype=float))
+    duration = require_positive("duration", duration, "s")
+    steps = _count("steps", steps, MAX_SAMPLES - 1)
+    start = require_angles("phi0", phi0), require_finite_array("omega0", omega0, "1/s"), _flywheel(flywheel)
+    if np.any(np.abs(start[1]) > OMEGA_MAX):
+        raise InvalidParameterError("omega0", omega0, f"of magnitude at most {OMEGA_MAX:g} 1/s")
+    try:
+        phi, omega, wheel = np.broadcast_arrays(*start)
+    except ValueError:
+        raise InvalidParameterError("phi0, omega0 and flywheel", f"arrays of shapes {[a.shape for a in start]}",
+                                    "numbers, or arrays of one shape (one run each)") from None
     shape = phi.shape
-    phi, omega, flywheel = (np.array(a, dtype=float).reshape(-1) for a in (phi, omega, flywheel))
+    if (steps + 1) * max(phi.size, 1) > MAX_SAMPLES:
+        raise InvalidParameterError("steps", steps, f"at most {MAX_SAMPLES} states in all: (steps + 1) × "
+                                    f"{phi.size} runs ≤ {MAX_SAMPLES}")
+    phi, omega, wheel = (np.array(a, dtype=float).reshape(-1) for a in (phi, omega, wheel))
     h = duration / steps
+    if not (h > 0.0 and math.isfinite(h)):
+        raise InvalidParameterError("duration", duration, "a time step duration/steps that is a positive number")
 
     def rate(t, p, w):
-        model = reduced_model(mechanism, masses, p, loads, gravity, springs, flywheel)
-        torque = _drive_torque(drive, t, p, w)
-        return w, (torque - model.resistance - 0.5 * model.slope * w**2) / model.inertia
+        _bounded(t, p, w)
+        model = reduced_model(mechanism, masses, p, loads, gravity, springs, wheel)
+        return w, _acceleration(model, _drive_torque(drive, t, p, w), w, p)
 
     times = h * np.arange(steps + 1)
     phis = np.empty((steps + 1, phi.size))
     omegas = np.empty((steps + 1, phi.size))
     phis[0], omegas[0] = phi, omega
     for k in range(steps):
-        t = times[k]
-        k1p, k1w = rate(t, phi, omega)
-        k2p, k2w = rate(t + 0.5 * h, phi + 0.5 * h * k1p, omega + 0.5 * h * k1w)
-        k3p, k3w = rate(t + 0.5 * h, phi + 0.5 * h * k2p, omega + 0.5 * h * k2w)
-        k4p, k4w = rate(t + h, phi + h * k3p, omega + h * k3w)
-        phi = phi + h / 6.0 * (k1p + 2.0 * k2p + 2.0 * k3p + k4p)
-        omega = omega + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)
+        with np.errstate(over="ignore", invalid="ignore"):   # an unbounded motion is found and named below
+            phi, omega = _step(rate, times[k], h, phi, omega)
+        _bounded(times[k + 1], phi, omega)
         phis[k + 1], omegas[k + 1] = phi, omega
     return Run(times, phis.reshape((steps + 1,) + shape), omegas.reshape((steps + 1,) + shape))
 
 
+def _bounded(t: float, phi: np.ndarray, omega: np.ndarray) -> None:
+    """Refuse a state that has left the numbers: the motion has become unbounded."""
+    if not (np.all(np.isfinite(phi)) and np.all(np.isfinite(omega))):
+        raise MechanismError(f"the motion becomes unbounded near t = {t:.6g} s: a driving torque or load too "
+                             "large for the masses, or a step Δt too long")
+
+
+def _step(rate, t: float, h: float, phi: np.ndarray, omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One step Δt = h of the classical Runge–Kutta method on the state (φ, φ_t)."""
+    k1p, k1w = rate(t, phi, omega)
+    k2p, k2w = rate(t + 0.5 * h, phi + 0.5 * h * k1p, omega + 0.5 * h * k1w)
+    k3p, k3w = rate(t + 0.5 * h, phi + 0.5 * h * k2p, omega + 0.5 * h * k2w)
+    k4p, k4w = rate(t + h, phi + h * k3p, omega + h * k3w)
+    return (phi + h / 6.0 * (k1p + 2.0 * k2p + 2.0 * k3p + k4p),
+            omega + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w))
+
+
 @dataclass(frozen=True)
 class SpeedFluctuation:
-    """Extreme and mean crank speeds (1/s) over whole revolutions, and δ = (ω_max − ω_min)/ω_m."""
+    """Extreme and mean crank speeds (1/s) over whole revolutions, and δ = (ω_max − ω_min)/ω_m.
+
+    In the run's sense of rotation: for a clockwise run (φ decreasing, φ_t < 0) ω_max is the fastest speed,
+    the most negative φ_t, ω_min the slowest, and ω_m is negative too, so δ ≥ 0 either way."""
 
     minimum: np.ndarray
     maximum: np.ndarray
@@ -232,30 +311,52 @@ def speed_fluctuation(run: Run, revolutions: int = 1) -> SpeedFluctuation:
     Parameters
     ----------
     run : Run
-        A simulation that has reached steady motion.
+        A simulation that has reached steady motion, the crank turning either way.
     revolutions : int
-        How many of the last whole crank revolutions to look at.
+        How many of the last whole crank revolutions to look at, ≥ 1.
 
     Returns
     -------
     SpeedFluctuation
-        ``ω_m = (ω_max + ω_min)/2`` and ``δ = (ω_max − ω_min)/ω_m`` (the textbook definition), per run.
+        ``ω_m = (ω_max + ω_min)/2`` and ``δ = (ω_max − ω_min)/ω_m`` (the textbook definition), per run,
+        in the run's sense of rotation (a clockwise run gives the same δ as its mirror image).
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming ``revolutions`` if the crank has not turned that many times in the run, and ``run`` if it is
+        not a :class:`Run` of finite numbers or its crank turns back within those revolutions (no steady motion).
 
     Notes
     -----
     The extremes are taken over the time steps, so they are accurate to O(Δt²) relative to the
     curvature of ω(t) at its extremes: with 100 steps per revolution, to about 1e-4 of the swing.
     """
-    phi = run.phi.reshape(len(run.t), -1)
-    omega = run.omega.reshape(len(run.t), -1)
-    window = phi >= phi[-1] - 2.0 * math.pi * revolutions
-    if np.any(phi[0] > phi[-1] - 2.0 * math.pi * revolutions):
+    if not isinstance(run, Run):
+        raise InvalidParameterError("run", run, "a Run, as simulate(...) returns")
+    revolutions = _count("revolutions", revolutions, 2**53)
+    t = require_finite_array("run.t", run.t, "s")
+    phi = require_finite_array("run.phi", run.phi, "rad")
+    omega = require_finite_array("run.omega", run.omega, "1/s")
+    if t.ndim != 1 or t.size < 2 or phi.shape != omega.shape or phi.shape[:1] != t.shape:
+        raise InvalidParameterError("run", f"t of shape {t.shape}, phi {phi.shape}, omega {omega.shape}",
+                                    "t of shape (n,) with n ≥ 2, phi and omega of one shape (n,) or (n, k)")
+    phi, omega = phi.reshape(len(t), -1), omega.reshape(len(t), -1)
+    sense = np.where(phi[-1] >= phi[0], 1.0, -1.0)          # +1 counter-clockwise, −1 clockwise, per run
+    turn = 2.0 * math.pi * revolutions
+    if np.any(sense * (phi[-1] - phi[0]) < turn):
         raise InvalidParameterError("revolutions", revolutions, "no more than the crank has turned in the run")
-    high = np.where(window, omega, -np.inf).max(axis=0)
-    low = np.where(window, omega, np.inf).min(axis=0)
+    # the last revolutions: the angles within `turn` of the last one, in the run's sense
+    window = sense * (phi[-1] - phi) <= turn
+    speed = sense * omega                                   # the speed in the run's sense of rotation
+    high = np.where(window, speed, -np.inf).max(axis=0)
+    low = np.where(window, speed, np.inf).min(axis=0)
+    if np.any(low < 0.0):
+        raise InvalidParameterError("run", "a crank that turns back within the last revolutions",
+                                    "a run in steady motion, its crank turning one way (then δ is defined)")
     mean = 0.5 * (high + low)
     shape = run.phi.shape[1:]
-    return SpeedFluctuation(*(a.reshape(shape) for a in (low, high, mean, (high - low) / mean)))
+    return SpeedFluctuation(*(a.reshape(shape) for a in (sense * low, sense * high, sense * mean, (high - low) / mean)))
 
 
 def energy_swing(phi: ArrayLike, torque: ArrayLike) -> float:
@@ -284,9 +385,14 @@ def energy_swing(phi: ArrayLike, torque: ArrayLike) -> float:
                                     "one value per crank angle, at two or more angles")
     if not np.all(np.diff(phi) > 0.0):
         raise InvalidParameterError("phi", "angles that do not increase", "increasing crank angles over one period")
-    work = np.concatenate([[0.0], np.cumsum(0.5 * (torque[1:] + torque[:-1]) * np.diff(phi))])
-    work = work - (phi - phi[0]) * work[-1] / (phi[-1] - phi[0])
-    return float(work.max() - work.min())
+    with np.errstate(over="ignore", invalid="ignore"):
+        work = np.concatenate([[0.0], np.cumsum(0.5 * (torque[1:] + torque[:-1]) * np.diff(phi))])
+        work = work - (phi - phi[0]) * work[-1] / (phi[-1] - phi[0])
+        swing = float(work.max() - work.min())
+    if not math.isfinite(swing):
+        raise InvalidParameterError("torque", "values whose work overflows",
+                                    "torques and angles whose work over the period is a finite number of J")
+    return swing
 
 
 def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> float:
@@ -304,4 +410,9 @@ def flywheel_inertia(swing: float, mean_speed: float, coefficient: float) -> flo
     swing = require_non_negative("swing", swing, "J")
     mean_speed = require_positive("mean_speed", mean_speed, "1/s")
     coefficient = require_positive("coefficient", coefficient, "(δ = (ω_max − ω_min)/ω_m)")
-    return swing / (coefficient * mean_speed**2)
+    with np.errstate(over="ignore", divide="ignore"):
+        inertia = float(np.float64(swing) / (np.float64(coefficient) * np.float64(mean_speed)**2))
+    if not math.isfinite(inertia):
+        raise InvalidParameterError("mean_speed", mean_speed, f"a speed for which ΔE/(δ ω_m²) is a finite number "
+                                    f"(ΔE = {swing:g} J, δ = {coefficient:g})")
+    return inertia

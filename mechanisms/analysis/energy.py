@@ -20,7 +20,7 @@ from differences. Units: kg, m, s; energies in J, powers in W, torques in N·m.
 
 from __future__ import annotations
 
-import math
+import numbers
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence, Union
 
@@ -28,8 +28,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..linkages.base import Mechanism, Solution
-from ..core.errors import InvalidParameterError, MechanismError
-from ..core.validate import require_finite, require_non_negative
+from ..core.errors import InvalidParameterError, MechanismError, UnknownNameError
+from ..core.validate import require_finite, require_non_negative, require_rates
 from ..core.motion import AngleMotion, Motion, PointMotion, polar, translated_point
 
 __all__ = [
@@ -120,6 +120,13 @@ class Force:
     along: float = 0.0
     left: float = 0.0
 
+    def __post_init__(self):
+        object.__setattr__(self, "body", _body_name(self.body))
+        if not callable(self.force):
+            _load_array(self.force, complex, f"the force on {self.body!r}")
+        object.__setattr__(self, "along", require_finite("along", self.along))
+        object.__setattr__(self, "left", require_finite("left", self.left))
+
 
 @dataclass(frozen=True)
 class Torque:
@@ -131,6 +138,11 @@ class Torque:
 
     body: str
     torque: Value
+
+    def __post_init__(self):
+        object.__setattr__(self, "body", _body_name(self.body))
+        if not callable(self.torque):
+            _load_array(self.torque, float, f"the torque on {self.body!r}")
 
 
 @dataclass(frozen=True)
@@ -164,9 +176,22 @@ class Spring:
     left: float = 0.0
 
     def __post_init__(self):
+        object.__setattr__(self, "body", _body_name(self.body))
         object.__setattr__(self, "stiffness", require_non_negative("stiffness", self.stiffness, "N/m"))
         object.__setattr__(self, "free_length", require_non_negative("free_length", self.free_length, "m"))
-        object.__setattr__(self, "anchor", complex(self.anchor))
+        anchor = self.anchor
+        # a number x + iy (a string such as "1+2j" would be parsed by complex(): refused)
+        try:
+            if isinstance(anchor, (bool, np.bool_)) or not isinstance(anchor, (numbers.Number, np.number)):
+                raise TypeError
+            point = complex(anchor)
+        except (TypeError, OverflowError):
+            point = complex(np.nan)
+        if not np.isfinite(point):
+            raise InvalidParameterError("anchor", anchor, "a finite point x + iy (m), a complex number")
+        object.__setattr__(self, "anchor", point)
+        object.__setattr__(self, "along", require_finite("along", self.along))
+        object.__setattr__(self, "left", require_finite("left", self.left))
 
     def length(self, solution: Solution) -> Motion:
         """The current length ℓ (m) with its time derivatives."""
@@ -203,15 +228,85 @@ class InertiaLoad:
     moment: np.ndarray
 
 
+# --- checks of the inputs (shared with dynamics and kinetostatics) ----------------------------------
+
+def _body_name(body: object) -> str:
+    if not isinstance(body, str) or not body:
+        raise InvalidParameterError("body", body, "the name of a link or of a joint with a sliding block (a string)")
+    return body
+
+
+def _load_array(value: object, dtype: type, what: str) -> np.ndarray:
+    """A load's value (a number or an array over the crank positions) as an array of ``dtype`` (complex for a
+    force ``Fx + i Fy``, float for a torque), finite; or :class:`InvalidParameterError` naming the load."""
+    kinds = "iufc" if dtype is complex else "iuf"
+    requirement = "finite numbers Fx + i Fy (N)" if dtype is complex else "finite numbers (N·m)"
+    if value is None or isinstance(value, (str, bytes, bool, np.bool_)):
+        raise InvalidParameterError(what, value, requirement)
+    try:
+        array = np.asarray(value)
+        if array.dtype.kind not in kinds:
+            raise TypeError
+        array = array.astype(dtype)
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidParameterError(what, value, requirement) from None
+    if not np.all(np.isfinite(array)):
+        raise InvalidParameterError(what, value, requirement)
+    return array
+
+
+def _masses(masses: object) -> Mapping[str, LinkMass]:
+    """``masses`` checked: a mapping ``{body name: LinkMass}``."""
+    if not isinstance(masses, Mapping):
+        raise InvalidParameterError("masses", masses, "a mapping {body name: LinkMass(...)}")
+    for body, props in masses.items():
+        if not isinstance(body, str) or not isinstance(props, LinkMass):
+            raise InvalidParameterError(f"masses[{body!r}]", props, "a LinkMass(...) for a body named by a string")
+    return masses
+
+
+def _items(name: str, values: object, kinds: tuple[type, ...], each: str) -> tuple:
+    if not isinstance(values, (list, tuple)):
+        raise InvalidParameterError(name, values, f"a list (or tuple), each item {each}")
+    for index, value in enumerate(values):
+        if not isinstance(value, kinds):
+            raise InvalidParameterError(f"{name}[{index}]", value, each)
+    return tuple(values)
+
+
+def _loads(loads: object) -> tuple[Force | Torque, ...]:
+    """``loads`` checked: a list or tuple of :class:`Force` and :class:`Torque`."""
+    return _items("loads", loads, (Force, Torque), "a Force(...) or a Torque(...)")
+
+
+def _springs(springs: object) -> tuple[Spring, ...]:
+    """``springs`` checked: a list or tuple of :class:`Spring`."""
+    return _items("springs", springs, (Spring,), "a Spring(...)")
+
+
+def _solution(solution: object) -> Solution:
+    if not isinstance(solution, Solution):
+        raise InvalidParameterError("solution", solution, "a Solution, as mechanism.solve(...) returns")
+    return solution
+
+
+def _mechanism(mechanism: object) -> Mechanism:
+    if not isinstance(mechanism, Mechanism):
+        raise InvalidParameterError("mechanism", mechanism, "a mechanism of the package (a Mechanism)")
+    return mechanism
+
+
 # --- bodies ---------------------------------------------------------------------------------
 
 def _is_link(solution: Solution, body: str) -> bool:
+    body = _body_name(body)
     if body in solution.angle_names:
         return True
     if body in solution.point_names:
         return False
-    raise KeyError(f"no body named {body!r}: a body is a link ({', '.join(solution.angle_names)}) "
-                   f"or a joint with a sliding block ({', '.join(solution.point_names)})")
+    # a body is a link or a joint with a sliding block
+    raise UnknownNameError("body (a link or a joint with a sliding block)", body,
+                           [*solution.angle_names, *solution.point_names])
 
 
 def body_point(solution: Solution, body: str, along: float = 0.0, left: float = 0.0) -> PointMotion:
@@ -226,23 +321,26 @@ def body_point(solution: Solution, body: str, along: float = 0.0, left: float = 
     along, left : float
         The point in the body's frame (m); for a block, the offset ``along + i left`` from the joint.
     """
+    solution = _solution(solution)
     if _is_link(solution, body):
         return solution.point_on(body, along, left)
-    return translated_point(solution.point(body), complex(along, left))
+    return translated_point(solution.point(body), complex(require_finite("along", along), require_finite("left", left)))
 
 
 def body_angle(solution: Solution, body: str) -> AngleMotion | None:
     """The angle of a link, or ``None`` for a translating block (it does not turn)."""
-    return solution.angle(body) if _is_link(solution, body) else None
+    return solution.angle(body) if _is_link(_solution(solution), body) else None
 
 
 def centre_of_mass(solution: Solution, body: str, properties: LinkMass) -> PointMotion:
     """The motion of a body's centre of mass S (m, m/s, m/s²)."""
+    if not isinstance(properties, LinkMass):
+        raise InvalidParameterError("properties", properties, "a LinkMass(...)")
     return body_point(solution, body, properties.along, properties.left)
 
 
 def _require(solution: Solution, order: int, what: str) -> None:
-    if solution.order < order:
+    if _solution(solution).order < order:
         need = ("velocities", "accelerations")[order - 1]
         raise MechanismError(f"{what} needs {need}: solve with order={order} (got order={solution.order})")
 
@@ -270,6 +368,7 @@ def kinetic_energies(solution: Solution, masses: Mapping[str, LinkMass]) -> dict
     about it (chapter 7). With points as complex numbers ``v·a = Re(conj(v) a)``.
     """
     _require(solution, 1, "the kinetic energy")
+    masses = _masses(masses)
     result = {}
     for body, props in masses.items():
         centre = centre_of_mass(solution, body, props)
@@ -321,6 +420,7 @@ def potential_energy(solution: Solution, masses: Mapping[str, LinkMass], gravity
         ``V = Σ m g y_S + Σ k_s (ℓ_s − ℓ_s0)²/2`` (zero level y = 0) and
         ``dV/dt = Σ m g (y_S)_t + Σ k_s (ℓ_s − ℓ_s0) ℓ_s,t``.
     """
+    solution, masses, springs = _solution(solution), _masses(masses), _springs(springs)
     gravity = require_finite("gravity", gravity)
     shape = np.shape(solution.phi)
     energy = np.zeros(shape)
@@ -348,6 +448,7 @@ def inertia_forces(solution: Solution, masses: Mapping[str, LinkMass]) -> dict[s
     make a system in equilibrium (kinetostatics, :mod:`mechanisms.analysis.kinetostatics`).
     """
     _require(solution, 2, "the inertia forces")
+    masses = _masses(masses)
     result = {}
     for body, props in masses.items():
         centre = centre_of_mass(solution, body, props)
@@ -361,12 +462,25 @@ def inertia_forces(solution: Solution, masses: Mapping[str, LinkMass]) -> dict[s
 # --- loads and their power ----------------------------------------------------------------------
 
 def load_values(load: Force | Torque, solution: Solution) -> np.ndarray:
-    """The force (complex, N) or torque (N·m) of a load at each crank position."""
+    """The force (complex, N) or torque (N·m) of a load at each crank position.
+
+    A constant, an array over the crank positions, or what the load's function returns for the solution: finite
+    numbers, one or one per position; anything else is an :class:`InvalidParameterError` naming the load."""
+    if not isinstance(load, (Force, Torque)):
+        raise InvalidParameterError("load", load, "a Force(...) or a Torque(...)")
+    solution = _solution(solution)
     value = load.force if isinstance(load, Force) else load.torque
+    what = f"the {'force' if isinstance(load, Force) else 'torque'} on {load.body!r}"
     if callable(value):
         value = value(solution)
-    dtype = complex if isinstance(load, Force) else float
-    return np.broadcast_to(np.asarray(value, dtype=dtype), np.shape(solution.phi))
+        what += " (as its function returns it)"
+    array = _load_array(value, complex if isinstance(load, Force) else float, what)
+    shape = np.shape(solution.phi)
+    try:
+        return np.broadcast_to(array, shape)
+    except ValueError:
+        raise InvalidParameterError(what, f"an array of shape {array.shape}",
+                                    f"one value or one per crank position (shape {shape})") from None
 
 
 def applied_power(solution: Solution, loads: Sequence[Force | Torque]) -> np.ndarray:
@@ -377,7 +491,7 @@ def applied_power(solution: Solution, loads: Sequence[Force | Torque]) -> np.nda
     """
     _require(solution, 1, "the power of the loads")
     power = np.zeros(np.shape(solution.phi))
-    for load in loads:
+    for load in _loads(loads):
         if isinstance(load, Force):
             point = body_point(solution, load.body, load.along, load.left)
             power = power + np.real(np.conj(point.velocity) * load_values(load, solution))
@@ -385,8 +499,6 @@ def applied_power(solution: Solution, loads: Sequence[Force | Torque]) -> np.nda
             angle = body_angle(solution, load.body)
             if angle is not None:
                 power = power + load_values(load, solution) * angle.omega
-        else:
-            raise TypeError(f"a load is a Force or a Torque, not {type(load).__name__}")
     return power
 
 
@@ -398,7 +510,7 @@ def linkage_masses(linkage: Any) -> dict[str, LinkMass]:
     linkage : Linkage
         A composed linkage (:class:`~mechanisms.linkages.composed.Linkage`) with ``masses``.
     """
-    return {body: LinkMass(**properties) for body, properties in getattr(linkage, "masses", {}).items()}
+    return dict(_masses({body: LinkMass(**properties) for body, properties in getattr(linkage, "masses", {}).items()}))
 
 
 def _crank_speed(solution: Solution) -> np.ndarray:
@@ -433,7 +545,7 @@ def reduced_inertia(mechanism: Mechanism, masses: Mapping[str, LinkMass],
     derivatives d²r/dφ² its accelerations at φ_t = 1, φ_tt = 0, because ``r_tt = r'' φ_t² + r' φ_tt``.
     Both are exact: no differences are taken (chapter 7).
     """
-    solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=2)
+    solution = _mechanism(mechanism).solve(phi, omega=1.0, alpha=0.0, order=2)
     parts = kinetic_energies(solution, masses).values()
     shape = np.shape(solution.phi)
     # at φ_t = 1: T = J_red/2 and dT/dt = dT/dφ = (dJ_red/dφ)/2
@@ -449,7 +561,7 @@ def reduced_torque(mechanism: Mechanism, loads: Sequence[Force | Torque], phi: A
     solution at φ_t = 1, φ_tt = 0, so a load may depend on the position and on the direction of
     motion for a crank turning counter-clockwise.
     """
-    solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=1)
+    solution = _mechanism(mechanism).solve(phi, omega=1.0, alpha=0.0, order=1)
     return applied_power(solution, loads)
 
 
@@ -459,7 +571,7 @@ def potential_torque(mechanism: Mechanism, masses: Mapping[str, LinkMass], phi: 
 
     The power dV/dt at φ_t = 1, exact.
     """
-    solution = mechanism.solve(phi, omega=1.0, alpha=0.0, order=1)
+    solution = _mechanism(mechanism).solve(phi, omega=1.0, alpha=0.0, order=1)
     return potential_energy(solution, masses, gravity, springs).velocity
 
 
@@ -511,5 +623,6 @@ def energy_balance(solution: Solution, masses: Mapping[str, LinkMass], drive: Ar
         Zero up to round-off when ``drive`` is right.
     """
     _require(solution, 2, "the energy balance")
+    drive = require_rates("drive", drive, np.shape(solution.phi), np.inf, "N·m")
     change = kinetic_energy(solution, masses).velocity + potential_energy(solution, masses, gravity, springs).velocity
-    return np.asarray(drive) * _crank_speed(solution) + applied_power(solution, loads) - change
+    return drive * _crank_speed(solution) + applied_power(solution, loads) - change

@@ -31,10 +31,11 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from ..linkages.base import Mechanism, Solution
-from ..core.errors import InvalidParameterError, MechanismError
+from ..core.errors import InvalidParameterError, MechanismError, UnknownNameError, describe_angles
+from ..core.validate import require_finite
 from ..linkages.groups import RRP, four_link
-from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, body_angle, body_point, centre_of_mass,
-                     load_values)
+from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, _loads, _masses, _mechanism, _solution,
+                     _springs, body_angle, body_point, centre_of_mass, load_values)
 
 __all__ = ["JointForces", "joint_forces"]
 
@@ -59,8 +60,8 @@ class JointForces:
         """The force at a joint (complex, N)."""
         try:
             return self.forces[joint]
-        except KeyError:
-            raise KeyError(f"no joint named {joint!r}; known: {', '.join(self.forces)}") from None
+        except (KeyError, TypeError):     # TypeError: a name that cannot be a key (a list)
+            raise UnknownNameError("joint", joint, self.forces) from None
 
 
 class _System:
@@ -143,10 +144,8 @@ class _System:
             if isinstance(load, Force):
                 point = body_point(self.solution, load.body, load.along, load.left).value
                 self.known_force(load.body, load_values(load, self.solution), point)
-            elif isinstance(load, Torque):
-                self.known_torque(load.body, load_values(load, self.solution))
             else:
-                raise TypeError(f"a load is a Force or a Torque, not {type(load).__name__}")
+                self.known_torque(load.body, load_values(load, self.solution))
 
     def _check(self, body: str, what: str) -> None:
         if f"{body}.x" not in self.rows:
@@ -158,7 +157,14 @@ class _System:
         matrix = self.matrix.copy()
         singular = np.asarray(self.solution.singular, dtype=bool).reshape(-1)
         matrix[singular] = np.eye(matrix.shape[1])  # placeholders, replaced by NaN below
-        unknowns = np.linalg.solve(matrix, self.rhs[..., None])[..., 0]
+        try:
+            unknowns = np.linalg.solve(matrix, self.rhs[..., None])[..., 0]
+        except np.linalg.LinAlgError:   # a position the kinematics did not flag as singular
+            rank = np.linalg.matrix_rank(matrix)
+            phi = np.asarray(self.solution.phi, dtype=float).reshape(-1)
+            raise MechanismError("the Newton–Euler equations have no unique solution (the joint forces are "
+                                 f"undetermined) at crank angle(s) {describe_angles(phi[rank < matrix.shape[1]])}") \
+                from None
         unknowns[singular] = np.nan
         return unknowns
 
@@ -205,6 +211,9 @@ def joint_forces(mechanism: Mechanism, solution: Solution, masses: Mapping[str, 
     Joint forces enter the body nearer the frame with the opposite sign (Newton's third law).
     At a singular position (``solution.singular``) the results are NaN.
     """
+    mechanism, solution = _mechanism(mechanism), _solution(solution)
+    masses, loads, springs = _masses(masses), _loads(loads), _springs(springs)
+    gravity = require_finite("gravity", gravity)
     if solution.order < 2:
         raise MechanismError(f"joint forces need accelerations: solve with order=2 (got order={solution.order})")
     phi = solution.phi
