@@ -5,6 +5,17 @@
  * per parameter, toggles for paths and vectors) and a readout, and moves the SVG's elements in place.
  * It computes nothing: every position and every number it shows is the package's, looked up by frame.
  * No network, no libraries.
+ *
+ * The crank angle and the family's members (the end of a parameter's range included):
+ * - the crank-angle slider, the φ of the readout and the drawing always agree: the frame shown;
+ * - a member that assembles over part of the turn is drawn only where it assembles: the crank angle the
+ *   reader asked for (with the crank slider, or by playing) is shown if the member assembles there, the
+ *   nearest frame where it does otherwise, and the slider moves there;
+ * - a member that assembles at no frame draws nothing: the drawing is hidden, a message over the figure and
+ *   the notes say why, the readout gives φ and "—" for every value, play is disabled; the crank slider
+ *   still moves φ;
+ * - the angle asked for is kept while the parameters move, so that passing through a member that assembles
+ *   over less of the turn (or not at all) and coming back returns to it.
  */
 (function () {
   "use strict";
@@ -63,6 +74,8 @@
     var still = (root.getAttribute("data-still") || "0,0").split(",");
     this.member = parseInt(still[0], 10);
     this.frame = parseInt(still[1], 10);
+    this.wanted = this.frame;           // the frame the reader asked for (crank slider or play)
+    this.empty = false;                 // the member shown assembles at no frame
     this.direction = 1;
     this.timer = null;
     this.build();
@@ -86,7 +99,10 @@
     angle.appendChild(element("span", { "class": "mech-slider-name" })).appendChild(label(d.angle));
     this.angle = element("input", { "type": "range", "class": "mech-angle", "min": "0",
       "max": String(d.phi.length - 1), "step": "1", "aria-label": "crank angle " + d.angle });
-    this.angle.addEventListener("input", function () { self.stop(); self.show(parseInt(self.angle.value, 10)); });
+    this.angle.addEventListener("input", function () { self.stop(); self.turn(parseInt(self.angle.value, 10)); });
+    this.angle.addEventListener("change", function () {     // a value set without an input event
+      if (parseInt(self.angle.value, 10) !== self.frame) { self.stop(); self.turn(parseInt(self.angle.value, 10)); }
+    });
     angle.appendChild(this.angle);
     controls.appendChild(angle);
     this.parameters = d.parameters.map(function (p, index) {
@@ -97,27 +113,41 @@
       var input = element("input", { "type": "range", "class": "mech-parameter", "min": "0",
         "max": String(p.values.length - 1), "step": "1", "data-name": p.name, "aria-label": p.label });
       var output = element("output", { "class": "mech-parameter-value", "data-name": p.name });
-      input.addEventListener("input", function () { self.setMember(self.memberIndex()); });
+      var moved = function () { if (self.memberIndex() !== self.member) self.setMember(self.memberIndex()); };
+      input.addEventListener("input", moved);
+      input.addEventListener("change", moved);
       box.appendChild(input);
       box.appendChild(output);
       controls.appendChild(box);
       return { input: input, output: output, spec: p, index: index };
     });
+    // a toggle per kind of thing drawn: [its name, its text, whether an element of the drawing is of it]
     var toggles = [];
-    if (d.paths.length) toggles.push(["mech-path", "paths"]);
+    if (d.paths.length) {
+      toggles.push(["mech-path", "paths", function (e) { return e.classList.contains("mech-path"); }]);
+    }
     var kinds = [];
     d.arrows.forEach(function (a) { if (kinds.indexOf(a.kind) < 0) kinds.push(a.kind); });
-    kinds.forEach(function (kind) { toggles.push(["kind-" + kind, kind]); });
+    kinds.forEach(function (kind) {      // any word, spaces included ("Frenet frame"): matched, not a class
+      toggles.push(["kind-" + kind, kind, function (e) { return e.getAttribute("data-kind") === kind; }]);
+    });
     toggles.forEach(function (pair) {
       var toggle = element("label", { "class": "mech-toggle" });
       var box = element("input", { "type": "checkbox", "checked": "checked", "data-toggle": pair[0] });
       box.addEventListener("change", function () {
-        self.root.classList.toggle("mech-hide-" + pair[0], !box.checked);
+        self.svg.querySelectorAll(".mech-path, [data-kind]").forEach(function (e) {
+          if (pair[2](e)) e.classList.toggle("mech-off", !box.checked);
+        });
       });
       toggle.appendChild(box);
       toggle.appendChild(document.createTextNode(" " + pair[1]));
       controls.appendChild(toggle);
     });
+    // the figure and, over it, the message of a member that assembles at no frame
+    var stage = element("div", { "class": "mech-stage" });
+    this.svg.parentNode.insertBefore(stage, this.svg);
+    stage.appendChild(this.svg);
+    this.message = stage.appendChild(element("div", { "class": "mech-message", "role": "status" }));
     this.readout = element("div", { "class": "mech-readout", "aria-live": "off" });
     this.notes = element("div", { "class": "mech-notes" });
     var caption = this.root.querySelector(".mech-caption");
@@ -168,19 +198,50 @@
       g.setAttribute("transform", "translate(" + guide[0] + " " + guide[1] + ") rotate(" +
         (guide[2] * 180 / Math.PI) + ")");
     });
-    var full = this.current.valid.indexOf("0") < 0;
+    var full = this.current.valid.indexOf("0") < 0, none = this.current.valid.indexOf("1") < 0;
+    var gaps = this.pointGaps();
     var notes = [];
-    if (this.current.valid.indexOf("1") < 0) {
+    var arcs = [], points = [];              // an interval whose ends print alike is a single angle
+    this.current.intervals.forEach(function (i) {
+      var a = fmt(i[0], 1) + "°", b = fmt(i[1], 1) + "°";
+      if (a === b) points.push(a); else arcs.push("[" + a + ", " + b + "]");
+    });
+    var range = (arcs.length ? "$" + d.angle + "$ in " + arcs.join(" and ") : "") +
+      (points.length ? (arcs.length ? " and at " : "$" + d.angle + "$ = ") + points.join(" and ") : "");
+    if (none && !this.current.intervals.length) {
       notes.push("does not assemble at any crank angle");
-    } else if (!full) {
-      notes.push("assembles only for $" + d.angle + "$ in " + this.current.intervals.map(function (i) {
-        return "[" + fmt(i[0], 1) + "°, " + fmt(i[1], 1) + "°]";
+    } else if (none) {                        // a range narrower than a frame's step: between two frames
+      notes.push("assembles only for " + range + ", between the frames of this figure");
+    } else if (!full && gaps) {               // cut at points only (a change point): "[−180.0°, 180.0°]" misleads
+      notes.push("assembles at every $" + d.angle + "$ but " + gaps.map(function (g) {
+        return fmt(g, 1) + "°";
       }).join(" and "));
+    } else if (!full) {
+      notes.push("assembles only for " + range);
     }
     this.notes.textContent = "";
     this.notes.appendChild(rich(notes.concat(this.current.notes).join(" · ")));
+    this.message.textContent = "";
+    if (none) this.message.appendChild(rich(notes[0] + ": nothing to draw"));
     this.root.classList.toggle("mech-partial", !full);
-    this.show(this.frame);
+    if (full) this.direction = 1;             // a full turn plays forwards, whatever a rocking member left
+    this.show(this.wanted);
+  };
+
+  Player.prototype.pointGaps = function () {   // the angles (°) where the turn is cut, if every cut is < 0.05°
+    var intervals = this.current.intervals.slice().sort(function (a, b) { return a[0] - b[0]; }), gaps = [];
+    for (var k = 0; k < intervals.length; k++) {
+      var end = intervals[k][1], next = k + 1 < intervals.length ? intervals[k + 1][0] : intervals[0][0] + 360;
+      if (next - end >= 0.05) return null;
+      var middle = (((end + next) / 2 + 180) % 360 + 360) % 360 - 180;     // in [−180°, 180°)
+      gaps.push(middle === -180 ? 180 : middle);
+    }
+    return gaps.length ? gaps : null;
+  };
+
+  Player.prototype.turn = function (frame) {     // the reader (or play) turns the crank to a frame
+    this.show(frame);
+    this.wanted = this.frame;
   };
 
   Player.prototype.pathData = function (name) {
@@ -194,14 +255,38 @@
     return out.join(" ") + (this.current.valid.indexOf("0") < 0 && out.length ? " Z" : "");
   };
 
-  Player.prototype.show = function (frame) {
-    var d = this.data, self = this, size = d.size;
+  Player.prototype.show = function (frame) {   // the frame asked for, or the nearest where the member assembles
+    var d = this.data, self = this;
     var found = this.nearestValid(frame);
-    if (found < 0) { this.root.classList.add("mech-empty"); return; }
-    this.root.classList.remove("mech-empty");
-    frame = found;
+    this.empty = found < 0;
+    this.root.classList.toggle("mech-empty", this.empty);
+    if (this.empty) this.stop();
+    this.play.disabled = this.empty;
+    if (this.empty) this.play.title = "this member assembles at no crank angle of the figure";
+    else this.play.removeAttribute("title");
+    if (!this.empty) frame = found;          // nothing to draw: the angle asked for, read out alone
     this.frame = frame;
     this.angle.value = String(frame);
+    if (!this.empty) this.draw(frame);
+    this.readout.textContent = "";
+    var items = [[d.angle, d.phi[frame], 0, "°"]];
+    d.readout.forEach(function (r, index) {
+      items.push([r.label, self.empty ? null : self.current.values[index][frame], r.digits, r.unit]);
+    });
+    items.forEach(function (item, index) {
+      var span = element("span", { "class": "mech-item" });
+      span.appendChild(label(item[0]));
+      span.appendChild(document.createTextNode(" = "));
+      var value = index === 0 ? ((item[1] % 360) + 360) % 360 : item[1];
+      span.appendChild(element("span", { "class": "mech-value", "data-label": item[0] },
+        fmt(value, index === 0 ? (Number.isInteger(value) ? 0 : 1) : item[2])));
+      if (item[3]) span.appendChild(document.createTextNode(item[3] === "°" ? "°" : " " + item[3]));
+      self.readout.appendChild(span);
+    });
+  };
+
+  Player.prototype.draw = function (frame) {    // the member's drawing at a frame where it assembles
+    var d = this.data, self = this, size = d.size;
     var list = function (names) {
       return names.split(",").map(function (n) { return self.at(n, frame); })
         .filter(function (p) { return p !== null; })
@@ -217,6 +302,7 @@
     });
     this.svg.querySelectorAll(".mech-ground").forEach(function (g) {
       var p = self.at(g.getAttribute("data-joint"), frame);
+      g.style.display = p ? "" : "none";
       if (p) g.setAttribute("transform", "translate(" + p[0] + " " + p[1] + ")");
     });
     this.svg.querySelectorAll(".mech-block").forEach(function (g) {
@@ -226,6 +312,7 @@
         var values = self.current.angles[a] || [];
         angle = values[frame] === null || values[frame] === undefined ? 0 : values[frame];
       }
+      g.style.display = p ? "" : "none";
       if (p) g.setAttribute("transform", "translate(" + p[0] + " " + p[1] + ") rotate(" + (angle * 180 / Math.PI) + ")");
     });
     this.svg.querySelectorAll(".mech-label").forEach(function (t) {
@@ -243,25 +330,13 @@
       label.style.display = shown ? "" : "none";
       if (shown) { label.setAttribute("x", p[0] + v[0] + 0.4 * size); label.setAttribute("y", -(p[1] + v[1]) - 0.4 * size); }
     });
-    this.readout.textContent = "";
-    var items = [[d.angle, d.phi[frame], 0, "°"]];
-    d.readout.forEach(function (r, index) { items.push([r.label, self.current.values[index][frame], r.digits, r.unit]); });
-    items.forEach(function (item, index) {
-      var span = element("span", { "class": "mech-item" });
-      span.appendChild(label(item[0]));
-      span.appendChild(document.createTextNode(" = "));
-      var value = index === 0 ? ((item[1] % 360) + 360) % 360 : item[1];
-      span.appendChild(element("span", { "class": "mech-value", "data-label": item[0] },
-        fmt(value, index === 0 ? (Number.isInteger(value) ? 0 : 1) : item[2])));
-      if (item[3]) span.appendChild(document.createTextNode(item[3] === "°" ? "°" : " " + item[3]));
-      self.readout.appendChild(span);
-    });
   };
 
   Player.prototype.toggle = function () { if (this.timer) this.stop(); else this.start(); };
 
   Player.prototype.start = function () {
     var self = this;
+    if (this.empty || this.timer) return;
     this.play.textContent = "\u275A\u275A pause";
     this.play.setAttribute("aria-label", "pause");
     this.timer = window.setInterval(function () { self.step(); }, 80);
@@ -286,7 +361,7 @@
       next = after();
       if (!this.valid(next)) return;
     }
-    this.show(next);
+    this.turn(next);
   };
 
   function start() {

@@ -9,11 +9,16 @@ Two parts:
     parameter slider changes the mechanism, its notes and its readout; **the readout at a chosen frame
     equals the package's ``solve`` at that crank angle and those parameter values, to the printed digits**;
     play and pause work; a member that assembles over part of the turn plays only inside its range and
-    says so; at a phone's width the page does not scroll sideways and the controls are visible.
+    says so; a member that assembles nowhere draws nothing, says so, and every control works again when the
+    reader moves back; at a phone's width the page does not scroll sideways and the controls are visible.
 (b) the built site, both editions (``make book``, ``make book-student``; the test fails naming the command
     when one is missing): on every page with a ``div.mech-player`` every player is ready, with no console
     error and no request leaving the machine, and moving the first player's crank-angle slider changes its
     SVG. Screenshots of each player go to ``_build/screenshots/players/`` for a person to look at.
+(c) every explorer of the built site (issue 28): each parameter slider at its minimum and its maximum, by the
+    keyboard (Home, End) and by setting its value with events; the drawing there is the member's own (the
+    positions of the page's scene data for that member and frame) or, for a member that assembles at no frame,
+    hidden with a message; moved back, the crank slider, the readout, play and the toggles work.
 
 Every non-local request is blocked (``test_site.open_page``). Run alone with ``pytest -m browser tests/test_player.py``.
 """
@@ -22,20 +27,23 @@ from __future__ import annotations
 
 import functools
 import http.server
+import json
 import math
 import pathlib
+import re
 import shutil
 import threading
 import warnings
+from itertools import product
 
 import numpy as np
 import pytest
 
 import mechanisms as mech
 from mechanisms.present import Parameter, Readout, explorer, scene, velocity
-from test_site import EDITIONS, ROOT, QuietHandler, browser, open_page, require_built, servers, site_pages  # noqa: F401
+from test_site import EDITIONS, ROOT, QuietHandler, browser, open_page, require_built, server, servers, site_pages  # noqa: F401
 
-pytestmark = pytest.mark.browser
+pytestmark = [pytest.mark.browser, pytest.mark.needs_site("full", "student")]
 
 STATIC = ROOT / "_static"
 SHOTS = ROOT / "_build" / "screenshots" / "players"
@@ -54,8 +62,8 @@ R = 0.1                                   # crank of the crank-slider explorer (
 RODS = [0.25, 0.3, 0.35]                  # its rod lengths
 OFFSETS = [0.0, 0.02, -0.03, 0.05]        # its offsets
 # a four-bar with coupler 1.4 m, rocker 2.5 m, C = (2, 0) m over its crank length: a full turn (0.5), one arc
-# around 180° (1.5), two arcs (2.2, 3.0), one arc across 0° (4.5)
-CRANKS = [0.5, 1.5, 2.2, 3.0, 4.5]
+# around 180° (1.5), two arcs (2.2, 3.0), one arc across 0° (4.5), none (6.0: |AC| >= 6 - 2 = 4 m > 1.4 + 2.5 m)
+CRANKS = [0.5, 1.5, 2.2, 3.0, 4.5, 6.0]
 FOUR_BAR = dict(coupler=1.4, rocker=2.5, frame=(2.0, 0.0))
 
 
@@ -403,3 +411,302 @@ def test_symbols_in_labels_and_notes_are_set_as_the_texts_math(page, scenes):
     assert '<span class="mech-symbol"><i>L</i><sub>1</sub></span>' in note and "$" not in note, note
     readout = page.eval_on_selector_all(root + " .mech-readout .mech-symbol", "ss => ss.map(s => s.innerHTML)")
     assert readout[:3] == ["<i>φ</i>", "<i>ψ</i>", "<i>ω</i><sub>3</sub>"], readout
+
+
+# --- a member that assembles nowhere, and the crank angle kept across members (issue 28) ---------------------------
+
+# what the drawing of a player is now: each joint's and dot's circle (shown or not, where), each bar's points,
+# whether the member is the empty one, the message over the figure (None where not shown), the readout, the notes,
+# the controls' state. "Shown" is what a reader sees: not display:none on the way up, and visibility visible.
+DRAWN = """r => {
+    const p = r.mechPlayer;
+    const seen = e => { if (!e || getComputedStyle(e).visibility !== 'visible') return false;
+        for (let n = e; n; n = n.parentElement) if (getComputedStyle(n).display === 'none') return false;
+        return true; };
+    const message = r.querySelector('.mech-message');
+    return {member: p.member, frame: p.frame, angle: parseInt(r.querySelector('input.mech-angle').value, 10),
+        joints: [...r.querySelectorAll('.mech-hinge, .mech-dot')].map(c => [c.dataset.joint, seen(c),
+            parseFloat(c.getAttribute('cx')), parseFloat(c.getAttribute('cy'))]),
+        bars: [...r.querySelectorAll('.mech-bar')].map(b => [b.dataset.points, seen(b), b.getAttribute('points')]),
+        message: seen(message) ? message.textContent : null,
+        notes: r.querySelector('.mech-notes').textContent,
+        values: Object.fromEntries([...r.querySelectorAll('.mech-readout span.mech-value')].map(
+            s => [s.dataset.label, s.textContent])),
+        play: {disabled: r.querySelector('button.mech-play').disabled, text: r.querySelector('button.mech-play').textContent},
+        parameters: [...r.querySelectorAll('input.mech-parameter')].map(i => parseInt(i.value, 10))};
+}"""
+
+
+# whether each element a toggle governs (paths for "mech-path", arrows and their labels of a kind for "kind-…")
+# is shown
+GOVERNED = """(r, name) => {
+    const seen = e => { for (let n = e; n; n = n.parentElement) if (getComputedStyle(n).display === 'none') return false;
+        return getComputedStyle(e).visibility === 'visible'; };
+    const mine = name === 'mech-path' ? e => e.classList.contains('mech-path')
+        : e => e.getAttribute('data-kind') === name.slice('kind-'.length);
+    return [...r.querySelectorAll('svg .mech-path, svg [data-kind]')].filter(mine).map(seen);
+}"""
+
+
+def drawn(root) -> dict:
+    return root.evaluate(DRAWN)
+
+
+def set_input(root, selector: str, value: int) -> None:
+    """Set a slider's value and send the events a person's drag sends (input, then change on release)."""
+    root.locator(selector).evaluate("(e, v) => { e.value = String(v); e.dispatchEvent(new Event('input', "
+                                    "{bubbles: true})); e.dispatchEvent(new Event('change', {bubbles: true})); }",
+                                    value)
+
+
+def phi_printed(degrees: float) -> str:
+    """The crank angle as the readout prints it: in [0°, 360°), whole degrees without decimals."""
+    value = degrees % 360.0
+    return printed(value, 0 if value == int(value) else 1)
+
+
+def test_a_member_that_assembles_nowhere_draws_nothing_and_the_controls_come_back(page, scenes):
+    s, root = scenes["family"], page.locator(player("family"))
+    none, full = s.member_index(crank=6.0), s.member_index(crank=0.5)
+    assert "1" not in s.data["members"][none]["valid"]           # |AC| >= 4 m > L2 + L3 = 3.9 m at every angle
+    set_slider(page, player("family") + " input.mech-angle", 3)  # 15°
+    parameter = root.locator("input.mech-parameter")
+    parameter.focus()
+    page.keyboard.press("End")                                   # the last crank length, 6.0 m
+    shown = drawn(root)
+    assert shown["member"] == none
+    visible = [j[0] for j in shown["joints"] if j[1]] + [b[0] for b in shown["bars"] if b[1]]
+    assert visible == [], f"a member that assembles nowhere still draws {visible} (a stale drawing)"
+    assert shown["message"] and "does not assemble at any crank angle" in shown["message"], shown["message"]
+    assert "does not assemble at any crank angle" in shown["notes"] and "crank L1 = 6 m" in shown["notes"]
+    assert shown["values"] == {"φ": "15", "ψ": "—", "ω_3": "—"}     # the angle asked for; no value to print
+    assert shown["play"]["disabled"], "play is offered where nothing can move"
+    angle = root.locator("input.mech-angle")
+    angle.focus()
+    page.keyboard.press("ArrowRight")                            # the crank slider still turns φ: 20°
+    shown = drawn(root)
+    assert (shown["frame"], shown["angle"], shown["values"]["φ"]) == (4, 4, "20")
+    parameter.focus()
+    page.keyboard.press("Home")                                  # back to 0.5 m: a full turn, drawn at 20°
+    shown = drawn(root)
+    assert (shown["member"], shown["frame"], shown["message"]) == (full, 4, None)
+    sol = solved(four_bar(0.5), math.radians(20.0))              # the package's positions, solved here
+    tolerance = s.data["step"] * math.sqrt(2) / 2 * (1 + 1e-6)
+    joints = {j[0]: complex(j[2], j[3]) for j in shown["joints"] if j[1]}
+    assert sorted(joints) == ["A", "B", "C", "O"]
+    for joint, where in joints.items():
+        assert abs(where - sol.point(joint).value[0]) <= tolerance, joint
+    assert shown["values"] == {"φ": "20", "ψ": printed(math.degrees(sol.angle("coupler").value[0]), 2),
+                               "ω_3": printed(sol.angle("rocker").omega[0], 3)}
+    assert not shown["play"]["disabled"]
+    angle.focus()
+    page.keyboard.press("ArrowRight")
+    assert drawn(root)["values"]["φ"] == "25"
+    page.click(player("family") + " button.mech-play")
+    page.wait_for_function(f"document.querySelector('{player('family')}').mechPlayer.frame !== 5", timeout=10_000)
+    page.click(player("family") + " button.mech-play")
+    assert "play" in drawn(root)["play"]["text"]
+
+
+def test_the_angle_asked_for_is_kept_through_a_member_that_assembles_over_part_of_the_turn(page, scenes):
+    s, root = scenes["family"], page.locator(player("family"))
+    set_input(root, "input.mech-angle", 1)                      # 5° on the full-turn member (0.5 m)
+    set_input(root, "input.mech-parameter", CRANKS.index(1.5))
+    # the 1.5 m crank assembles for φ in (0.5735, 5.7097) rad = (32.9°, 327.1°): the frame nearest 5° inside is 35°
+    (lower, upper), = four_bar(1.5).assembly_intervals()
+    assert math.degrees(lower) < 35.0 < math.degrees(lower) + 5.0 and math.degrees(upper) < 330.0
+    shown = drawn(root)
+    assert (shown["member"], shown["frame"], shown["angle"], shown["values"]["φ"]) == \
+        (s.member_index(crank=1.5), 7, 7, "35"), "the crank slider, the drawing and φ must agree"
+    sol = solved(four_bar(1.5), math.radians(35.0), order=0)
+    tolerance = s.data["step"] * math.sqrt(2) / 2 * (1 + 1e-6)
+    for joint, seen, x, y in shown["joints"]:
+        assert seen and abs(complex(x, y) - sol.point(joint).value[0]) <= tolerance, joint
+    set_input(root, "input.mech-parameter", CRANKS.index(0.5))  # back: at the angle the reader had set
+    shown = drawn(root)
+    assert (shown["frame"], shown["angle"], shown["values"]["φ"]) == (1, 1, "5")
+
+
+# --- (c) every explorer of the built site at both ends of every parameter -----------------------------------------
+
+SCENE_DATA = re.compile(r'<div class="mech-player" data-still="(\d+),(\d+)">.*?'
+                        r'<script type="application/json" class="mech-scene">(.*?)</script>', re.S)
+
+
+def site_explorers() -> list:
+    """(page, index of the player on the page) for every player of the full edition with a parameter slider."""
+    site = EDITIONS["full"][0]
+    found = []
+    for page_path in player_pages(site):
+        for index, match in enumerate(SCENE_DATA.finditer((site / page_path).read_text(encoding="utf8"))):
+            data = json.loads(match.group(3))                   # "<\/" in the page is JSON's escaped "/"
+            if data["parameters"]:
+                found.append(pytest.param(page_path, index, id=f"{page_path}:{index}:{data['title']}"))
+    return found
+
+
+def page_scene(page_path: str, index: int) -> tuple[dict, int, int]:
+    """The scene data of a player of the built site as the page holds it, and its still (member, frame)."""
+    match = list(SCENE_DATA.finditer((EDITIONS["full"][0] / page_path).read_text(encoding="utf8")))[index]
+    return json.loads(match.group(3)), int(match.group(1)), int(match.group(2))
+
+
+def test_the_site_has_explorers():
+    require_built("full")
+    pages = {p.values[0] for p in site_explorers()}
+    assert "book/04-four-bar.html" in pages, f"no explorer found on chapter 4 (explorers on: {sorted(pages)})"
+
+
+def stored(data: dict, member: int, name: str, frame: int) -> tuple[float, float] | None:
+    """A joint's position in the scene data (m), or None where the member has it not."""
+    xy = data["members"][member]["xy"].get(name)
+    if xy is None or xy[2 * frame] is None:
+        return None
+    return data["origin"][0] + data["step"] * xy[2 * frame], data["origin"][1] + data["step"] * xy[2 * frame + 1]
+
+
+def nearest_frames(valid: str, wanted: int) -> set[int]:
+    """The frames where the member assembles nearest (round the turn) to the frame asked for."""
+    n = len(valid)
+    frames = [k for k in range(n) if valid[k] == "1"]
+    distance = {k: min((k - wanted) % n, (wanted - k) % n) for k in frames}
+    return {k for k in frames if distance[k] == min(distance.values())}
+
+
+def member_at(data: dict, positions: list[int]) -> int:
+    """The member of the sliders' positions: the one whose key is those values (looked up in the keys)."""
+    key = [p["values"][i] for p, i in zip(data["parameters"], positions)]
+    return data["keys"].index(key)
+
+
+def check_drawing(root, data: dict, positions: list[int], wanted: int, where: str) -> dict:
+    """The player shows the member of the sliders' positions, at the frame asked for or the nearest where it
+    assembles, with the scene data's positions; or, for a member that assembles at no frame, nothing drawn, a
+    message, the angle asked for and no value. Returns what it shows."""
+    shown = drawn(root)
+    member = member_at(data, positions)
+    valid = data["members"][member]["valid"]
+    assert shown["parameters"] == positions, f"{where}: the sliders are at {shown['parameters']}"
+    assert shown["member"] == member, f"{where}: member {shown['member']} shown for the sliders' member {member}"
+    if "1" in valid:
+        assert shown["frame"] in nearest_frames(valid, wanted), \
+            f"{where}: frame {shown['frame']} shown, asked {wanted}, the member assembles at {valid}"
+        frame = shown["frame"]
+        assert shown["angle"] == frame and shown["message"] is None and not shown["play"]["disabled"], where
+        extent = data["step"] * 4000
+        for name, seen, x, y in shown["joints"]:
+            expected = stored(data, member, name, frame)
+            assert seen == (expected is not None), f"{where}: {name} {'drawn' if seen else 'hidden'} at frame {frame}"
+            if expected is not None:
+                assert math.isclose(x, expected[0], abs_tol=1e-9 * extent) and \
+                    math.isclose(y, expected[1], abs_tol=1e-9 * extent), \
+                    f"{where}: {name} drawn at ({x}, {y}), the member's own is {expected} (frame {frame})"
+        for names, seen, points in shown["bars"]:
+            expected = [p for p in (stored(data, member, n, frame) for n in names.split(",")) if p is not None]
+            got = [tuple(float(v) for v in pair.split(",")) for pair in points.split()]
+            assert seen and len(got) == len(expected), f"{where}: bar {names} is {points!r}"
+            assert all(math.isclose(a, b, abs_tol=1e-9 * extent) for p, q in zip(got, expected) for a, b in zip(p, q)), \
+                f"{where}: bar {names} drawn through {points}, the member's own is {expected}"
+        values = [v for k, v in shown["values"].items() if k != data["angle"]]
+        assert len(values) == len(data["readout"]), f"{where}: readout {shown['values']}"
+        if "0" in valid:
+            assert "assembles" in shown["notes"], f"{where}: no note says where the member assembles: {shown['notes']}"
+    else:
+        frame = wanted
+        visible = [j[0] for j in shown["joints"] if j[1]] + [b[0] for b in shown["bars"] if b[1]]
+        assert visible == [], f"{where}: the member assembles at no frame, yet {visible} are drawn (stale)"
+        assert shown["message"], f"{where}: the member assembles at no frame and no message says so"
+        assert "assemble" in shown["message"] and "assemble" in shown["notes"], (shown["message"], shown["notes"])
+        assert shown["angle"] == wanted and shown["play"]["disabled"], where
+        assert [v for k, v in shown["values"].items() if k != data["angle"]] == ["—"] * len(data["readout"]), \
+            f"{where}: values printed for a member that assembles nowhere: {shown['values']}"
+    assert shown["values"][data["angle"]] == phi_printed(data["phi"][frame]), \
+        f"{where}: {data['angle']} reads {shown['values'][data['angle']]}, frame {frame} is {data['phi'][frame]}°"
+    return shown
+
+
+def check_crank_slider(page, root, data: dict, positions: list[int], shown: dict, where: str) -> int:
+    """Turn the crank one step with the keyboard: the readout's angle changes with it (the frame it lands on
+    follows the rule of check_drawing). Returns the frame now asked for."""
+    n = len(data["phi"])
+    asked = shown["frame"] + 1 if shown["frame"] < n - 1 else shown["frame"] - 1
+    root.locator("input.mech-angle").focus()
+    page.keyboard.press("ArrowRight" if asked > shown["frame"] else "ArrowLeft")
+    after = check_drawing(root, data, positions, asked, where + ", the crank turned a step")
+    member = data["members"][member_at(data, positions)]
+    if member["valid"][asked] == "1" or "1" not in member["valid"]:
+        assert after["values"][data["angle"]] != shown["values"][data["angle"]], \
+            f"{where}: the crank slider moved and the readout did not"
+    return after["frame"]
+
+
+@pytest.mark.parametrize(("page_path", "index"), site_explorers())
+def test_site_explorer_at_both_ends_of_every_parameter(browser, server, page_path, index):
+    data, still_member, still_frame = page_scene(page_path, index)
+    context, page, problems = open_page(browser, server, page_path)
+    try:
+        page.wait_for_function("[...document.querySelectorAll('div.mech-player')].every(p => p.mechPlayer)",
+                               timeout=15_000)
+        root = page.locator("div.mech-player").nth(index)
+        root.scroll_into_view_if_needed()
+        start = [p["values"].index(v) for p, v in zip(data["parameters"], data["keys"][still_member])]
+        wanted = still_frame
+        check_drawing(root, data, start, wanted, "the still")
+        shots = SHOTS / "ends"
+        shots.mkdir(parents=True, exist_ok=True)
+        name = f"{page_path.replace('/', '_').removesuffix('.html')}.{index}"
+        for number, parameter in enumerate(data["parameters"]):
+            slider = f'input.mech-parameter[data-name="{parameter["name"]}"]'
+            last = len(parameter["values"]) - 1
+            for way, end in (("End", last), ("Home", 0), ("events", last), ("events", 0)):
+                positions = list(start)
+                positions[number] = end
+                if way == "events":
+                    set_input(root, slider, end)
+                else:
+                    root.locator(slider).focus()
+                    page.keyboard.press(way)
+                where = f"{page_path} player {index}: {parameter['name']} = {parameter['values'][end]} ({way})"
+                shown = check_drawing(root, data, positions, wanted, where)
+                if way != "events":
+                    root.screenshot(path=str(shots / f"{name}.{parameter['name']}-{way}.png"))
+                    wanted = check_crank_slider(page, root, data, positions, shown, where)
+            set_input(root, slider, start[number])
+            check_drawing(root, data, start, wanted, f"{page_path} player {index}: {parameter['name']} moved back")
+        if len(data["parameters"]) == 2:                         # the corners of a two-parameter family
+            for corner in product(*[(0, len(p["values"]) - 1) for p in data["parameters"]]):
+                for p, i in zip(data["parameters"], corner):
+                    set_input(root, f'input.mech-parameter[data-name="{p["name"]}"]', i)
+                check_drawing(root, data, list(corner), wanted, f"{page_path} player {index}: corner {corner}")
+            for p, i in zip(data["parameters"], start):
+                set_input(root, f'input.mech-parameter[data-name="{p["name"]}"]', i)
+        # back at the start: the crank slider, the readout, play and the toggles work
+        where = f"{page_path} player {index}, moved back"
+        shown = check_drawing(root, data, start, wanted, where)
+        valid = data["members"][member_at(data, start)]["valid"]
+        n = len(valid)
+        target = max((k for k in range(n) if valid[k] == "1"),
+                     key=lambda k: min((k - shown["frame"]) % n, (shown["frame"] - k) % n))
+        set_input(root, "input.mech-angle", target)
+        after = check_drawing(root, data, start, target, where + ", crank slider set")
+        if target != shown["frame"]:
+            assert after["frame"] == target and after["values"] != shown["values"], \
+                f"{where}: the crank slider moved to frame {target} and the readout did not change"
+        if valid.count("1") > 1:
+            root.locator("button.mech-play").click()
+            page.wait_for_function("([r, f]) => r.mechPlayer.frame !== f", arg=[root.element_handle(), target],
+                                   timeout=10_000)
+            root.locator("button.mech-play").click()
+            assert "play" in drawn(root)["play"]["text"], f"{where}: play did not stop"
+            check_drawing(root, data, start, drawn(root)["frame"], where + ", played")
+        for toggle in root.locator("input[data-toggle]").all():
+            name = toggle.get_attribute("data-toggle")
+            before = root.evaluate(GOVERNED, name)
+            assert any(before), f"{where}: the toggle {name!r} governs nothing drawn"
+            toggle.click()
+            assert not any(root.evaluate(GOVERNED, name)), f"{where}: the toggle {name!r} turned off hid nothing"
+            toggle.click()
+            assert root.evaluate(GOVERNED, name) == before, f"{where}: the toggle {name!r} did not show them again"
+        assert problems == [], "\n".join(problems)
+    finally:
+        context.close()

@@ -390,6 +390,13 @@ def test_still_has_every_joint_when_the_first_member_does_not_assemble():
         f"the still of an explorer whose first member does not assemble has hinges {hinges}"
 
 
+def test_a_still_of_a_member_that_assembles_nowhere_is_refused():
+    # the coupler of 1.0 m and the rocker of 1 m reach at most 2 m from C, |AC| >= 4 - 1 = 3 m: no frame
+    with pytest.raises(mech.InvalidParameterError, match=r"still must be .*assembles at a frame"):
+        explorer(lambda coupler: mech.FourBar(1.0, coupler, 1.0, frame=(4.0, 0.0)),
+                 [Parameter("coupler", "L₂", "m", [1.0, 2.5, 3.5])], still={"coupler": 1.0})
+
+
 def test_still_has_every_joint_at_a_still_angle_where_it_does_not_assemble():
     s = scene(mech.FourBar(3.0, 1.4, 2.5, frame=(2.0, 0.0)), still_angle=0.0)   # assembles for |φ| in [11°, 101°]
     hinges = sorted(h.get("data-joint") for h in by_class(still_svg(s), "mech-hinge"))

@@ -8,7 +8,8 @@ length, a pivot distance, a point's position on the coupler), all precomputed he
 (``_static/mechanisms-player.js``) only looks values up, so every number the page shows is the
 package's. Where a member of the family does not assemble over the whole turn, its frames outside
 :meth:`~mechanisms.linkages.base.Mechanism.assembly_intervals` are empty and the player keeps to the
-range where it does.
+range where it does; a member that assembles at no frame (the end of a parameter's range) has every
+frame empty, and the player draws nothing for it but says so.
 
 :meth:`Scene.html` gives the HTML of one figure: an SVG still image of one frame (what a printed page
 or a reader without JavaScript sees), the scene's data as JSON, and an ``<div class="mech-player">``
@@ -273,7 +274,8 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
         Write the joints' names; a mapping ``{package name: label}`` writes some under the page's own
         letters (``{"L": "E", "O1": "C"}``), the others under the package's.
     still : mapping, optional
-        The parameter values of the still image (default: the first member).
+        The parameter values of the still image, a member that assembles at a frame (default: the first
+        member that does).
     still_angle : float, optional
         The crank angle (rad) of the still image (default: the first frame where it assembles).
     caption : str
@@ -312,6 +314,9 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
         info["notes"] = list(notes(member["mechanism"])) if notes else []
     assembling = [i for i, m in enumerate(members) if m["valid"].any()]
     chosen = Scene(data).member_index(**still) if still else assembling[0]
+    if chosen not in assembling:                # its still image would be an empty picture
+        raise InvalidParameterError("still", dict(still or {}), "the parameter values of a member that assembles "
+                                    "at a frame of the figure (this one assembles at none)")
     valid = members[chosen]["valid"]
     frames_valid = np.flatnonzero(valid)
     if still_angle is not None and frames_valid.size:
