@@ -422,3 +422,23 @@ def test_short_components_are_named_as_long_ones():
         v = plans.velocity_plan(m, sol)
         _, axes = plot_plans.draw_plans(m, sol, v, plans.acceleration_plan(m, sol, velocity=v), figsize=size)
         assert name in [t.get_text() for t in axes[2].texts]
+
+
+@pytest.mark.parametrize("name", ["watt-six-bar", "jansen", "shaper", "scotch-yoke"])
+def test_plans_and_centres_of_a_linkage_file_are_drawn(name):
+    linkage = mech.load_linkage(name)
+    solution = linkage.solve(np.radians([75.0]), 10.0, 2.0)
+    velocity = plans.velocity_plan(linkage, solution)
+    acceleration = plans.acceleration_plan(linkage, solution, velocity=velocity)
+    fig, axes = plot_plans.draw_plans(linkage, solution, velocity, acceleration)
+    # every vector longer than a hair is an arrow of its plan
+    for ax, plan in zip(axes[1:], (velocity, acceleration)):
+        drawn = [v for v in plan.vectors if abs(plan.drawn(v.head) - plan.drawn(v.tail)) >= 1e-9]
+        assert len(_arrows(ax)) == len(drawn)
+    centres = plans.instant_centres(linkage, solution)
+    ax = plot_plans.draw_instant_centres(linkage, solution, centres)
+    # a star for every finite centre that is not a joint of the drawing
+    stars = [line for line in ax.lines if line.get_marker() == "*"]
+    joints = list(centres.positions.values())
+    expected = [p for p in centres.finite.values() if min(abs(p - q) for q in joints) > 1e-12]
+    assert len(stars) == len(expected)

@@ -517,8 +517,10 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     grid = fig.add_gridspec(2, count, height_ratios=(1.0, 1.7), width_ratios=ratios)
     axes = [fig.add_subplot(grid[0, :])] + [fig.add_subplot(grid[1, k]) for k in range(count)]
     draw(mechanism, solution, index=index, ax=axes[0], label_offset=label_offset)
+    joints = {velocity.positions[name] for name in solution.point_names if name in velocity.positions}
     for name, position in velocity.positions.items():
-        if name not in solution.point_names and name != "A3":
+        # the named extra points of links; not a link's point under a block (A3 under A2), which is a joint
+        if name not in solution.point_names and position not in joints:
             axes[0].plot(position.real, position.imag, "o", ms=4, color=ROLE_COLOURS["point"], zorder=5)
             axes[0].annotate(point_label(name), (position.real, position.imag),
                              xytext=(5, -12), textcoords="offset points")
@@ -642,7 +644,7 @@ def _key(ax: Axes) -> None:
 def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: InstantCentres, index: int = 0,
                          ax: Axes | None = None, lines: bool = True, arrow_length: float | None = None,
                          legend: bool = True) -> Axes:
-    """The mechanism with all its instant centres P_ij, and Kennedy's lines that locate P02 and P13.
+    """The mechanism with all its instant centres P_ij, and Kennedy's lines that locate the others (P02 and P13 of a four-bar).
 
     Parameters
     ----------
@@ -651,7 +653,8 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
     centres : InstantCentres
         From :func:`mechanisms.analysis.plans.instant_centres` at that position.
     lines : bool
-        Draw (dotted) the lines of Kennedy's theorem through the centres that locate P02 and P13.
+        Draw (dotted) the lines of Kennedy's theorem through the centres that locate the centres found by
+        it (``centres.lines``: P02 and P13 of a four-bar).
     arrow_length : float, optional
         Length (m) of the arrows that point to centres at infinity.
     legend : bool
@@ -663,9 +666,10 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
 
     Notes
     -----
-    A joint is lettered with its centre ("$A = P_{12}$"); the two centres found by Kennedy's
-    theorem are stars. Each letter is set in the direction, from its point, farthest from the
-    lines that pass through the point (bars, Kennedy's lines, the frame's support below a pivot).
+    A joint is lettered with its centre ("$A = P_{12}$"); the centres that are not joints (found by
+    Kennedy's theorem or from the velocities) are stars. Each letter is set in the direction, from
+    its point, farthest from the lines that pass through the point (bars, Kennedy's lines, the frame's
+    support below a pivot).
     """
     ax = draw(mechanism, solution, index=index, ax=ax, labels=False)
     finite = centres.finite
@@ -674,8 +678,7 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
     arrow_length = arrow_length or 0.12 * span
     if lines:
         first = True
-        for target, ways in (((0, 2), (((0, 1), (1, 2)), ((0, 3), (2, 3)))),
-                             ((1, 3), (((0, 1), (0, 3)), ((1, 2), (2, 3))))):
+        for target, ways in centres.lines.items():
             if target not in finite:
                 continue
             for pair in (p for way in ways for p in way):
@@ -713,8 +716,9 @@ def draw_instant_centres(mechanism: Mechanism, solution: Solution, centres: Inst
         letters.write(point, text, _free_directions(occupied), distance, fontsize=10,
                       color="black" if name else "0.2", zorder=7)
     for (i, j), direction in centres.infinite.items():
-        # from the joint of the slider, an arrow towards the centre at infinity
-        start = centres.positions.get("B", 0j)
+        # from the joint of the sliding pair (else the joint B), an arrow towards the centre at infinity
+        joint = centres.joints.get((i, j), "B")
+        start = centres.positions.get(joint, centres.positions.get("B", 0j))
         end = start + arrow_length * direction
         ax.annotate("", xy=(end.real, end.imag), xytext=(start.real, start.imag),
                     arrowprops={"arrowstyle": "->", "color": "0.3", "lw": 1.0, "linestyle": "--"})
