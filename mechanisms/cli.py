@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import io
 import json
+from pathlib import Path
 import math
 import os
 import pathlib
@@ -460,6 +461,22 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=FORMAT_SUMMARY, formatter_class=argparse.RawDescriptionHelpFormatter)
     structure.add_argument("path", metavar="FILE.toml", help="the linkage file, or the name of a shipped example")
     structure.add_argument("--format", choices=("text", "json"), default="text")
+    plan = commands.add_parser(
+        "plan", help="velocity and acceleration plans of a linkage file at one crank angle, vector by vector",
+        description="Construct the velocity and acceleration plans at one crank angle as on paper (group by "
+                    "group) and print each vector: its name, its segment on the plan, its length in mm at "
+                    "the scale, its value and its direction; --out draws both plans beside the linkage.",
+        epilog=FORMAT_SUMMARY, formatter_class=argparse.RawDescriptionHelpFormatter)
+    plan.add_argument("path", metavar="FILE.toml", help="the linkage file, or the name of a shipped example")
+    plan.add_argument("--angle", type=_cli_number, required=True, help="crank angle φ, degrees")
+    plan.add_argument("--omega", type=_cli_number, required=True, help="crank angular velocity ω1, 1/s")
+    plan.add_argument("--alpha", type=_cli_number, default=0.0, help="crank angular acceleration ε1, 1/s² (default 0)")
+    plan.add_argument("--scale-v", type=_cli_number, default=None, dest="scale_v",
+                      help="μ_v, (m/s)/mm (default: the smallest course scale within 100 mm)")
+    plan.add_argument("--scale-a", type=_cli_number, default=None, dest="scale_a",
+                      help="μ_a, (m/s²)/mm (default: the smallest course scale within 100 mm)")
+    plan.add_argument("--out", default=None, metavar="PLAN.svg|png", help="draw the plans into this file")
+    plan.add_argument("--format", choices=("text", "json"), default="text")
     _add_course_commands(commands)
     _add_bench_command(commands)
     return parser
@@ -482,6 +499,48 @@ def _structure(args: argparse.Namespace) -> str:
 
     report = structure_of(load_linkage(args.path))
     return report.json() if args.format == "json" else report.text()
+
+
+_PLAN_SUFFIXES = (".png", ".svg")
+
+
+def _plan(args: argparse.Namespace) -> str:
+    """``plan FILE.toml --angle DEG --omega W``: every vector of both plans, and the drawing if asked."""
+    from .analysis.plans import plan_report
+
+    out_path = None
+    if args.out is not None:
+        out_path = Path(args.out)
+        if out_path.suffix.lower() not in _PLAN_SUFFIXES:
+            raise InvalidParameterError("--out", args.out, "a file name ending in .png or .svg")
+    linkage = load_linkage(args.path)
+    report = plan_report(linkage, to_radians(args.angle, "--angle"), args.omega, args.alpha,
+                         args.scale_v, args.scale_a)
+    if out_path is not None:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        from .plot.plans import draw_plans
+
+        figure, _ = draw_plans(linkage, report.solution, report.velocity, report.acceleration)
+        try:
+            figure.savefig(out_path, format=out_path.suffix.lower()[1:])
+        except OSError as error:
+            raise InvalidParameterError("--out", args.out, f"a file that can be written ({error.strerror})") from None
+        finally:
+            plt.close(figure)
+    if args.format == "json":
+        data = {"file": str(args.path), "angle_deg": args.angle, "omega": args.omega, "alpha": args.alpha}
+        return json.dumps(data | report.as_dict(), ensure_ascii=False, indent=1)
+    lines = [f"{linkage.describe()}: plans at φ = {args.angle:g}°, ω1 = {args.omega:g} 1/s, ε1 = {args.alpha:g} 1/s²",
+             f"μ_v = {report.velocity.scale:g} (m/s)/mm, μ_a = {report.acceleration.scale:g} (m/s²)/mm"]
+    lines.append(f"{'plan':<13}{'vector':<12}{'segment':<9}{'length, mm':>11}{'value':>14}  {'unit':<5}{'direction, °':>13}")
+    for row in report.rows:
+        lines.append(f"{row.quantity:<13}{row.name:<12}{row.segment:<9}{row.length_mm:>11.2f}"
+                     f"{row.magnitude:>14.6g}  {row.unit:<5}{row.direction_deg:>13.2f}")
+    if out_path is not None:
+        lines.append(f"drawn into {out_path}")
+    return "\n".join(lines)
 
 
 def _add_bench_command(commands) -> None:
@@ -754,9 +813,10 @@ def _main(argv: Sequence[str] | None, out: _Output) -> int:
     if args.command is None:
         out.write(parser.format_help())
         return 0
-    if args.command in ("bench", "structure"):
+    if args.command in ("bench", "structure", "plan"):
         try:
-            text = _bench(args) if args.command == "bench" else _structure(args)
+            text = (_bench(args) if args.command == "bench" else _structure(args) if args.command == "structure"
+                    else _plan(args))
         except MechanismError as error:
             _error(str(error))
             return 2
