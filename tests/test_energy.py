@@ -293,3 +293,25 @@ def test_an_unknown_body_is_a_lookup_error_naming_the_bodies():
     sol = mech.CrankSlider(0.08, 0.3).solve(_phi())
     with pytest.raises(mech.UnknownNameError, match="rocker.*known: crank, coupler"):
         energy.body_point(sol, "rocker")
+
+
+# --- issue 29: the bodies of a linkage file, named for this module ----------------------------------------------
+
+def test_linkage_masses_name_blocks_by_their_joint_and_merge_two_blocks_of_one_joint():
+    from mechanisms.linkages.linkage_file import linkage_from_dict
+    data = {"frame": {"O": [0.0, 0.0], "C": [0.0, -0.4]}, "crank": {"pivot": "O", "pin": "A", "length": 0.1},
+            "dyad": [{"type": "RPR", "block": "A", "pivot": "C", "links": ["block", "lever"]},
+                     {"type": "PRP", "joint": "K", "guides": [{"through": [0.0, 0.3], "angle_deg": 0.0},
+                                                              {"through": [0.2, 0.0], "angle_deg": 90.0}]}],
+            "mass": [{"body": "A", "mass": 1.0, "inertia": 0.5}, {"body": "K1", "mass": 1.0, "along": 0.1},
+                     {"body": "K2", "mass": 3.0, "left": 0.2}],
+            "load": [{"body": "K2", "force": [1.0, 2.0]}, {"body": "A", "torque": 3.0}]}
+    linkage = linkage_from_dict(data)
+    masses = energy.linkage_masses(linkage)
+    # the block on A turns with the lever: named by its link, so that its inertia counts
+    assert masses["block"] == energy.LinkMass(1.0, 0.0, 0.0, 0.5)
+    # K1 and K2 translate with K: one body of 4 kg, its centre the mass-weighted mean (1·0.1 + 3·0)/4, (1·0 + 3·0.2)/4
+    assert masses["K"].mass == 4.0
+    assert masses["K"].along == pytest.approx(0.025, rel=1e-15) and masses["K"].left == pytest.approx(0.15, rel=1e-15)
+    loads = energy.linkage_loads(linkage)
+    assert [(type(load).__name__, load.body) for load in loads] == [("Force", "K"), ("Torque", "block")]

@@ -508,3 +508,58 @@ def test_the_preserved_distances_still_hold_the_rigid_link():
     for joints in linkage.link_joints().values():
         for joint in joints[1:]:
             assert any(joint in pair for pair in pairs)
+
+
+# --- issue 29: loads and gravity in the file ------------------------------------------------------------------
+
+SLIDER = FOUR_BAR + """\
+[[dyad]]
+type = "RRP"
+joint = "H"
+from = "B"
+length = 0.3
+guide = { through = [0.0, 0.3], angle_deg = 0.0 }
+links = ["rod", "ram"]
+"""
+
+
+@pytest.mark.parametrize("table, words", [
+    ('[[load]]\nbody = "nope"\ntorque = 1.0\n', ["[[load]] #1", "'body'", "nope", "AB", "CB", "rod", "ram", "H"]),
+    ('[[load]]\nbody = "AB"\n', ["[[load]] #1", "exactly one of force"]),
+    ('[[load]]\nbody = "AB"\ntorque = 1.0\nforce = [1.0, 0.0]\n', ["[[load]] #1", "exactly one of force"]),
+    ('[[load]]\nbody = "AB"\nforce = [1.0]\n', ["[[load]] #1", "'force'"]),
+    ('[[load]]\nbody = "AB"\nforce = [1.0, nan]\n', ["[[load]] #1", "'force'"]),
+    ('[[load]]\nbody = "AB"\nforce = ["1", 0.0]\n', ["[[load]] #1", "'force'"]),
+    ('[[load]]\nbody = "AB"\nforce = [1.0, 0.0]\nalong = inf\n', ["[[load]] #1", "'along'"]),
+    ('[[load]]\nbody = "AB"\ntorque = "big"\n', ["[[load]] #1", "'torque'"]),
+    ('[[load]]\nbody = "AB"\ntorque = 1.0\nalong = 0.1\n', ["[[load]] #1", "'along'", "no point"]),
+    ('[[load]]\nbody = 3\ntorque = 1.0\n', ["[[load]] #1", "'body'"]),
+    ('[[load]]\nbody = "AB"\ntorque = 1.0\nsize = 2\n', ["[[load]] #1", "unknown key 'size'"]),
+    ('[[load]]\nbody = "AB"\ntorque = 1.0\n[[load]]\nbody = "frame"\ntorque = 1.0\n', ["[[load]] #2", "'frame'"]),
+    ('[[mass]]\nbody = "ram"\nmass = 1.0\n[[mass]]\nbody = "H"\nmass = 2.0\n', ["[[mass]] #2", "twice"]),
+    ('[[mass]]\nbody = "A"\nmass = 1.0\n', ["[[mass]] #1", "no body 'A'"]),
+    ('[[mass]]\nbody = "ram"\nmass = 1.0\ninertia = -1.0\n', ["[[mass]] #1", "'inertia'"]),
+])
+def test_loads_refuse_their_wrong_values(tmp_path, table, words):
+    refused(write(tmp_path, SLIDER + table), *words)
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", '"down"', "true", "[9.81]"])
+def test_gravity_must_be_a_finite_number(tmp_path, value):
+    refused(write(tmp_path, f"gravity = {value}\n" + SLIDER), "'gravity'")
+
+
+def test_loads_and_gravity_are_kept():
+    import tomllib
+    data = tomllib.loads("gravity = 9.81\n" + SLIDER + '[[load]]\nbody = "H"\nforce = [-800.0, 5]\nleft = 0.01\n'
+                         '[[load]]\nbody = "CB"\ntorque = -15\n[[mass]]\nbody = "ram"\nmass = 3.0\n')
+    linkage = linkage_from_dict(data)
+    assert linkage.gravity == 9.81
+    assert linkage.loads == [{"body": "H", "force": (-800.0, 5.0), "along": 0.0, "left": 0.01},
+                             {"body": "CB", "torque": -15.0}]
+    assert linkage_from_dict(tomllib.loads(SLIDER)).gravity == 0.0
+    # for the energy functions a block that only translates is named by its joint, a link by its name
+    from mechanisms.analysis import energy
+    assert set(energy.linkage_masses(linkage)) == {"H"}
+    loads = energy.linkage_loads(linkage)
+    assert [load.body for load in loads] == ["H", "CB"]

@@ -36,6 +36,7 @@ __all__ = [
     "STANDARD_GRAVITY",
     "LinkMass",
     "linkage_masses",
+    "linkage_loads",
     "Force",
     "Torque",
     "Spring",
@@ -502,15 +503,81 @@ def applied_power(solution: Solution, loads: Sequence[Force | Torque]) -> np.nda
     return power
 
 
+def _file_masses(linkage: Any) -> dict[str, LinkMass]:
+    """A linkage's ``[[mass]]`` tables as :class:`LinkMass`, by the body names the file gives."""
+    return dict(_masses({body: LinkMass(**properties) for body, properties in getattr(linkage, "masses", {}).items()}))
+
+
+def _block_joints(groups: Sequence[Any]) -> dict[str, str]:
+    """Every block (a sliding pair's block or yoke) of a mechanism's groups, by its link name → its joint."""
+    from ..linkages.groups import PRP, RPP, RPR, RRP
+    blocks: dict[str, str] = {}
+    for group in groups:
+        if isinstance(group, RRP):
+            blocks[group.slider] = group.joint
+        elif isinstance(group, RPR):
+            blocks[group.slider] = group.block
+        elif isinstance(group, PRP):
+            blocks[group.first_slider] = blocks[group.second_slider] = group.joint
+        elif isinstance(group, RPP):
+            blocks[group.slider], blocks[group.yoke] = group.block, group.joint
+    return blocks
+
+
+def _body_key(linkage: Any, body: str) -> str:
+    """The name under which this module finds a linkage's body: a link that turns by its name, a block that only
+    translates by its joint (the joint of a block that turns: that block's link)."""
+    turning = getattr(linkage, "links", {})
+    blocks = _block_joints(linkage.groups()) if isinstance(linkage, Mechanism) else {}
+    if body in turning:
+        return body
+    if body in blocks:
+        return blocks[body]
+    carried = [link for link, joint in blocks.items() if joint == body and link in turning]
+    return carried[0] if len(carried) == 1 else body
+
+
 def linkage_masses(linkage: Any) -> dict[str, LinkMass]:
     """The mass properties a linkage file gives (``[[mass]]``), by body, for the functions of this module.
+
+    A link that turns keeps its name; a block that only translates is named by its joint (its ``along`` and
+    ``left`` are then the offset from the joint in fixed axes). Two blocks that translate with one joint (a
+    PRP's) are one body here: their masses add, at their common centre of mass.
 
     Parameters
     ----------
     linkage : Linkage
         A composed linkage (:class:`~mechanisms.linkages.composed.Linkage`) with ``masses``.
     """
-    return dict(_masses({body: LinkMass(**properties) for body, properties in getattr(linkage, "masses", {}).items()}))
+    merged: dict[str, LinkMass] = {}
+    for body, props in _file_masses(linkage).items():
+        key = _body_key(linkage, body)
+        if key in merged:
+            other = merged[key]
+            total = other.mass + props.mass
+            share = 0.5 if total == 0.0 else props.mass / total
+            props = LinkMass(total, other.along + share * (props.along - other.along),
+                             other.left + share * (props.left - other.left), other.inertia + props.inertia)
+        merged[key] = props
+    return merged
+
+
+def _file_loads(linkage: Any, key: Callable[[str], str] = str) -> list[Force | Torque]:
+    """A linkage's ``[[load]]`` tables as :class:`Force` and :class:`Torque`, each on the body ``key(name)``."""
+    loads: list[Force | Torque] = []
+    for load in getattr(linkage, "loads", ()):
+        if "torque" in load:
+            loads.append(Torque(key(load["body"]), float(load["torque"])))
+        else:
+            fx, fy = load["force"]
+            loads.append(Force(key(load["body"]), complex(fx, fy), load.get("along", 0.0), load.get("left", 0.0)))
+    return loads
+
+
+def linkage_loads(linkage: Any) -> list[Force | Torque]:
+    """The loads a linkage file gives (``[[load]]``), a :class:`Force` or a :class:`Torque` each, on bodies named
+    as :func:`linkage_masses` names them, for :func:`applied_power` and the reduced torque."""
+    return _file_loads(linkage, lambda body: _body_key(linkage, body))
 
 
 def _crank_speed(solution: Solution) -> np.ndarray:

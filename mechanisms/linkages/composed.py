@@ -134,6 +134,12 @@ class Linkage(Mechanism):
         (kg, m, kg·m²), for :func:`mechanisms.analysis.energy.linkage_masses`.
     source : str, optional
         The file the linkage was read from, named in tables and messages.
+    loads : sequence of mapping, optional
+        Constant loads by body: ``{"body": "slider", "force": (Fx, Fy), "along": 0.0, "left": 0.0}`` (N, m) or
+        ``{"body": "rocker", "torque": T}`` (N·m), for :func:`mechanisms.analysis.energy.linkage_loads`.
+    gravity : float, optional
+        g (m/s²) along −y for the linkage's forces (:func:`mechanisms.analysis.kinetostatics.linkage_forces`);
+        0 (no gravity) by default.
 
     Raises
     ------
@@ -154,9 +160,12 @@ class Linkage(Mechanism):
     """
 
     def __init__(self, frame: Mapping[str, Any], groups: Sequence[Group], name: str = "linkage",
-                 masses: Mapping[str, Mapping[str, float]] | None = None, source: str | None = None):
+                 masses: Mapping[str, Mapping[str, float]] | None = None, source: str | None = None,
+                 loads: Sequence[Mapping[str, Any]] = (), gravity: float = 0.0):
         self.name = str(name)
         self.source = source
+        self.loads = [dict(load) for load in loads]
+        self.gravity = require_finite("gravity", gravity)
         if not isinstance(frame, Mapping):
             raise StructureError(f"{self.name}: the frame must map joint names to points [x, y] in m: got {frame!r}")
         if isinstance(groups, (str, bytes)) or not isinstance(groups, Sequence):
@@ -457,7 +466,8 @@ class Linkage(Mechanism):
     def _rescaled(self, factor: float) -> "Linkage":
         """The same linkage with every length, position and guess multiplied by ``factor`` (a power of four)."""
         return Linkage({name: point * factor for name, point in self.frame.items()},
-                       [_scaled_group(group, factor) for group in self._groups], self.name, self.masses, self.source)
+                       [_scaled_group(group, factor) for group in self._groups], self.name, self.masses, self.source,
+                       self.loads, self.gravity)
 
     # --- solving -------------------------------------------------------------------------------
 

@@ -68,12 +68,32 @@ Lengths in m, angles in degrees. The keys (a contract: they keep their meaning):
     guess_angle_deg = 0.0       # the crank angle of the guess
     links = ["DEF", "AD", "CE", "GF"]   # optional
 
-    [[mass]]                    # mass properties of a body (for the energy chapter)
-    body = "coupler"
-    mass = 2.0                  # kg
-    along = 0.15                # m, the centre of mass in the body's frame
+    gravity = 9.81              # m/s^2, along -y (a top-level key, before the first table); absent: none
+
+    [[mass]]                    # mass properties of a body (energy, forces)
+    body = "coupler"            # a link's name, or a block's: its link's name ("ram") or its joint ("H")
+    mass = 2.0                  # kg, >= 0
+    along = 0.15                # m, the centre of mass in the body's frame (default 0)
+    left = 0.0                  # m (default 0)
+    inertia = 0.02              # kg m^2, >= 0, about the centre of mass (default 0)
+
+    [[load]]                    # a constant force on a body (N, fixed axes x, y) at a point of it
+    body = "ram"
+    force = [-800.0, 0.0]
+    along = 0.0                 # m, the point in the body's frame, as for [[mass]] (default 0, 0)
     left = 0.0
-    inertia = 0.02              # kg m^2, about the centre of mass
+
+    [[load]]                    # or a constant torque on a body (N m, counter-clockwise positive)
+    body = "output rocker"
+    torque = -15.0
+
+A body's frame: a link's first joint at the origin, its x axis along the link (``links`` of its
+group: an RRR's first link from ``from[0]``, its second from ``from[1]``; an RRP's rod from
+``from``; an RPR's lever from ``pivot``; the crank from ``pivot``); a block's origin is its joint,
+its x axis its sliding direction if it turns, the fixed axes x, y if it only translates. A
+``[[load]]`` takes exactly one of ``force`` and ``torque``. Masses, loads and gravity give the
+forces of ``python -m mechanisms table FILE --forces`` (:mod:`mechanisms.analysis.kinetostatics`);
+a file with none of them has all its forces zero.
 
 Groups may come in any order that respects what they need. Every error names the file, the
 group (``[[dyad]] #2``) or key, and the cause. Angles in degrees are reduced exactly to (−180°, 180°]
@@ -110,9 +130,10 @@ A linkage file (TOML; lengths in m, angles in degrees):
   [[point]] name, link = [P, Q] or LINK, along and left (m) or distances = [|PE|, |QE|] and branch
   [[triad]] joints, bars = [[P, Q, length], …], guess = {JOINT = [x, y]}, guess_angle_deg
   [[mass]] body, mass (kg), along, left (m), inertia (kg m^2)
+  [[load]] body, force = [Fx, Fy] (N) with along, left (m), or torque (N m); gravity = g (m/s^2, along -y)
 Every group may name its links: links = [...]. The full format: the book's multi-loop chapter."""
 
-_TOP = {"name", "frame", "crank", "dyad", "point", "triad", "mass", "description"}
+_TOP = {"name", "frame", "crank", "dyad", "point", "triad", "mass", "load", "gravity", "description"}
 _FILE_KEYS = {"first_length": "lengths", "second_length": "lengths", "first": "from", "second": "from",
               "first guide": "guides", "second guide": "guides", "slot_angle": "slot_angle_deg", "bar": "bars"}
 """The key of the file for a field of a group that :class:`~mechanisms.linkages.composed.Linkage` names."""
@@ -287,6 +308,9 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
         for number, table in enumerate(tables, 1):
             pending.append((kind, table, _Where(source, _place(kind, number, table))))
     masses = _masses(data.get("mass", []), source)
+    loads = _loads(data.get("load", []), source)
+    gravity = top.number(data["gravity"], "gravity", "an acceleration g in m/s² (along −y), a finite number") \
+        if "gravity" in data else 0.0
 
     def local_of(groups_so_far: list[Group]) -> Callable[[str, str], tuple[str, complex, float | None]]:
         def local(through: str, toward: str) -> tuple[str, complex, float | None]:
@@ -328,16 +352,47 @@ def linkage_from_dict(data: Mapping[str, Any], source: str = "<linkage>") -> Lin
                               "no group finds")
         waiting = still
     try:
-        linkage = Linkage(frame, groups, name=name, masses=masses, source=source)
+        linkage = Linkage(frame, groups, name=name, masses=masses, source=source, loads=loads, gravity=gravity)
     except MechanismError as error:
         raise _located(error, source, places) from None
-    bodies = set(linkage.links) | {j for joints in linkage.link_joints().values() for j in joints}
+    bodies = _bodies(linkage)
+    given: dict[str, int] = {}
     for number, body in enumerate(masses, 1):
-        if body not in bodies:
-            raise _Where(source, f"[[mass]] #{number}").error(
-                f"no body {body!r}: a body is a link ({', '.join(linkage.links)}) or a joint with a sliding block",
-                "body")
+        where = _Where(source, f"[[mass]] #{number}")
+        found = _body(where, body, bodies)
+        if found in given:
+            raise where.error(f"body {body!r} is the body of [[mass]] #{given[found]} (its mass is given twice)",
+                              "body")
+        given[found] = number
+    for number, load in enumerate(loads, 1):
+        _body(_Where(source, f"[[load]] #{number}"), load["body"], bodies)
     return linkage
+
+
+def _bodies(linkage: Linkage) -> dict[str, list[str]]:
+    """Every name of a moving body → the bodies it names: each link by its name, each block by its joint too."""
+    names: dict[str, list[str]] = {name: [name] for name in linkage.link_joints() if name != "frame"}
+    by_joint: dict[str, list[str]] = {}
+    for name, item in linkage._links.items():
+        if item.role == "slider" and item.pole is not None:
+            by_joint.setdefault(item.pole, []).append(name)
+    for joint, blocks in by_joint.items():
+        names.setdefault(joint, blocks)
+    return names
+
+
+def _body(where: _Where, body: str, bodies: Mapping[str, list[str]]) -> str:
+    """The body a [[mass]] or [[load]] names, or the file's error naming the known bodies."""
+    found = bodies.get(body, [])
+    if len(found) == 1:
+        return found[0]
+    links = [name for name, named in bodies.items() if named == [name]]
+    blocks = [name for name, named in bodies.items() if named != [name]]
+    if found:
+        raise where.error(f"joint {body!r} carries the blocks {', '.join(map(repr, found))}: name one of them",
+                          "body")
+    raise where.error(f"no body {body!r}: a body is a link ({', '.join(links)})"
+                      + (f" or a block's joint ({', '.join(blocks)})" if blocks else ""), "body")
 
 
 def _located(error: MechanismError, source: str, places: Mapping[int, _Where]) -> StructureError:
@@ -484,6 +539,35 @@ def _masses(tables: Any, source: str) -> dict[str, dict[str, float]]:
                 raise where.error(f"must be ≥ 0: got {properties[key]!r}", key)
         masses[body] = properties
     return masses
+
+
+def _loads(tables: Any, source: str) -> list[dict[str, Any]]:
+    """The [[load]] tables: a constant force (N) at a point of a body, or a constant torque (N·m) on it."""
+    top = _Where(source, "the file")
+    if not isinstance(tables, list) or not all(isinstance(t, dict) for t in tables):
+        raise top.error("must be an array of tables [[load]]", "load")
+    loads = []
+    for number, table in enumerate(tables, 1):
+        where = _Where(source, f"[[load]] #{number}")
+        where.keys(table, {"body"}, {"force", "torque", "along", "left"})
+        body = where.name(table, "body")
+        if ("force" in table) == ("torque" in table):
+            raise where.error("give exactly one of force = [Fx, Fy] (N) and torque = T (N·m)")
+        if "torque" in table:
+            if "along" in table or "left" in table:
+                raise where.error("a torque acts on the whole body: it takes no point (along, left)",
+                                  "along" if "along" in table else "left")
+            loads.append({"body": body, "torque": where.number(table["torque"], "torque", "a torque in N·m, a finite "
+                                                                                          "number")})
+            continue
+        force = table["force"]
+        what = "a force [Fx, Fy] in N, two finite numbers"
+        if not isinstance(force, list) or len(force) != 2:
+            raise where.error(f"must be {what}: got {force!r}", "force")
+        loads.append({"body": body, "force": (where.number(force[0], "force", what), where.number(force[1], "force", what)),
+                      "along": where.number(table.get("along", 0.0), "along", "a distance in m"),
+                      "left": where.number(table.get("left", 0.0), "left", "a distance in m")})
+    return loads
 
 
 def load_linkage(path: str | Path) -> Linkage:
