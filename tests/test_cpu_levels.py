@@ -14,7 +14,11 @@ once, and the default level is the main nbval run's. The test's id names the lev
 
 A level above this CPU (AVX-512 on an AVX2 machine) cannot be imitated: a notebook cell that prints a
 round-off-sized number or plots one must compute it so that no processor can change it (chapter 9
-shows how). Before committing a notebook: ``make cpu-levels``.
+shows how). The last level comes closest, on any machine: "every elementary function one ulp off"
+runs the notebooks with numpy's double-precision sine, cosine, arctangent, power, absolute value of
+complex numbers … moved one unit in the last place at random (``tools/nudge_numpy.py``, loaded into
+every kernel by an IPython startup file; seed ``NUDGE_SEED``, or ``MECHANISMS_NUDGE_SEED`` from the
+environment to try another). Before committing a notebook: ``make cpu-levels``.
 """
 
 from __future__ import annotations
@@ -33,6 +37,8 @@ X86_LEVELS = (("all features", ()),
               ("without AVX-512", ("X86_V4", "AVX512_ICL", "AVX512_SPR")),
               ("baseline", ("X86_V3", "X86_V4", "AVX512_ICL", "AVX512_SPR")))
 TIMEOUT = 3600                          # seconds for one level's notebooks
+NUDGE = "every elementary function one ulp off"
+NUDGE_SEED = 1
 
 
 def _features(disabled: tuple[str, ...]) -> tuple[str, ...]:
@@ -99,8 +105,17 @@ def _failures(report: pathlib.Path, output: str) -> list[str]:
 LEVELS: list[tuple[str, tuple[str, ...] | None]] = list(cpu_levels()) or [("no other level on this CPU", None)]
 
 
-@pytest.mark.parametrize("level", LEVELS, ids=[name if d is None else f"{name} ({' '.join(d) or 'nothing'} disabled)"
-                                               for name, d in LEVELS])
+def _nudge_seed() -> int:
+    return int(os.environ.get("MECHANISMS_NUDGE_SEED", "").strip() or NUDGE_SEED)
+
+
+def _level_id(name: str, disabled: tuple[str, ...] | None) -> str:
+    if name == NUDGE:
+        return f"{name} (seed {_nudge_seed()})"
+    return name if disabled is None else f"{name} ({' '.join(disabled) or 'nothing'} disabled)"
+
+
+@pytest.mark.parametrize("level", LEVELS + [(NUDGE, ())], ids=[_level_id(*level) for level in LEVELS + [(NUDGE, ())]])
 def test_notebooks_at_cpu_level(level, tmp_path):
     """Every notebook re-executed at this numpy CPU level reproduces its stored outputs byte for byte."""
     name, disabled = level
@@ -110,7 +125,15 @@ def test_notebooks_at_cpu_level(level, tmp_path):
         lowest = baseline if "X86_V3" in umath.__cpu_dispatch__ else tuple(umath.__cpu_dispatch__)
         assert _features(lowest) == _features(()), "cpu_levels() missed a level"
         return
-    env = dict(os.environ, NPY_DISABLE_CPU_FEATURES=" ".join(disabled))
+    if name == NUDGE:                   # this CPU's kernels, every result moved by one ulp at random
+        sys.path.insert(0, str(ROOT / "tools"))
+        try:
+            from nudge_numpy import kernel_environment
+        finally:
+            sys.path.pop(0)
+        env = kernel_environment(_nudge_seed(), tmp_path / "ipython")
+    else:
+        env = dict(os.environ, NPY_DISABLE_CPU_FEATURES=" ".join(disabled))
     groups = _groups(_notebooks(), max(1, min(4, os.cpu_count() or 1)))
     runs = []
     for i, group in enumerate(groups):              # the groups in parallel, one process each
@@ -127,7 +150,7 @@ def test_notebooks_at_cpu_level(level, tmp_path):
         if process.returncode != 0:
             output = pathlib.Path(log.name).read_text()
             failures += _failures(report, output) or [f"pytest exited with {process.returncode}:\n{output[-3000:]}"]
-    assert not failures, (f"at numpy CPU level '{name}' (NPY_DISABLE_CPU_FEATURES="
+    assert not failures, (f"at numpy CPU level '{_level_id(name, disabled)}' (NPY_DISABLE_CPU_FEATURES="
                           f"\"{' '.join(disabled)}\") these notebook cells differ from their stored outputs:\n"
                           + "\n".join(failures))
 
@@ -174,3 +197,33 @@ def test_the_reproducible_reference_solves_the_constraints_in_extended_precision
     residual = max(float(np.max(np.abs(r))) for r in m.constraints(ref.q, phi.astype(np.longdouble)))
     assert residual < 50 * float(np.finfo(np.longdouble).eps)
     assert float(np.max(np.abs(ref.q - bench.reference(m, phi).q))) < 50 * float(np.finfo(np.longdouble).eps)
+
+
+_KERNEL_CHECK = """
+import nbformat, numpy as np
+from nbclient import NotebookClient
+nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(
+    "import math, numpy as np\\n"
+    "x = np.linspace(0.1, 3.0, 1000)\\n"
+    "moved = np.sin(x) != [math.sin(v) for v in x]\\n"
+    "print(type(np.sin).__name__, int(moved.sum()), float(np.sin(0.0)), float(np.abs(3 + 4j)))")])
+NotebookClient(nb, kernel_name="python3", timeout=120).execute()
+print(nb.cells[0].outputs[0]["text"].strip())
+"""
+
+
+def test_the_nudge_reaches_every_kernel_and_moves_only_inexact_results(tmp_path):
+    # expected: a kernel started in the nudge level's environment has numpy.sin replaced (class Nudged), moves
+    # most of 1000 sines off the C library's (glibc's sin agrees with numpy's but for a few in 1000; the nudge
+    # moves every result that is not exact, so several hundred differ), and leaves sin 0 = 0 and |3 + 4i| = 5
+    sys.path.insert(0, str(ROOT / "tools"))
+    try:
+        from nudge_numpy import kernel_environment
+    finally:
+        sys.path.pop(0)
+    env = kernel_environment(NUDGE_SEED, tmp_path / "ipython")
+    done = subprocess.run([sys.executable, "-c", _KERNEL_CHECK], env=env, cwd=tmp_path, capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    name, moved, sine, modulus = done.stdout.split()[-4:]
+    assert name == "Nudged" and int(moved) > 300 and float(sine) == 0.0 and float(modulus) == 5.0

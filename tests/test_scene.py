@@ -486,3 +486,42 @@ def test_a_colour_for_a_link_the_mechanism_lacks_or_not_hex_is_refused(colours, 
     with pytest.raises(mech.InvalidParameterError, match="colours") as caught:
         scene(rockers, frames=8, colours=colours)
     assert cause in str(caught.value)
+
+
+# --- the same scene on every processor ---------------------------------------------------------------------
+
+def nudged_numpy(seed: int) -> dict:
+    """numpy's elementary functions one ulp off at random (tools/nudge_numpy.py): another processor's."""
+    import pathlib
+    import sys
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "tools"))
+    try:
+        from nudge_numpy import nudged_functions
+    finally:
+        sys.path.pop(0)
+    return nudged_functions(seed)
+
+
+def test_a_scene_does_not_change_when_numpys_elementary_functions_move_by_an_ulp(monkeypatch):
+    # A four-bar explorer with velocity and acceleration arrows (their scales come from |v|, numpy's absolute
+    # value of complex numbers) and a coupler point: positions and vectors differ in their last bits from
+    # processor to processor; what a scene stores must not (the chapter 8 explorer failed at numpy's baseline).
+    def build(rod):
+        return mech.FourBar(0.1, rod, 0.3, (0.4, 0.05), branch=1)
+
+    def make():
+        return explorer(build, [Parameter("rod", "L_2", "m", [0.33, 0.35, 0.37])], frames=36,
+                        arrows=[velocity("B"), acceleration("B")], points={"P": mech.present.On("coupler", 0.2, 0.05)},
+                        paths=["P"]).json()
+
+    expected = make()
+    data = json.loads(expected)
+    # the numbers computed from the whole figure are stored to 6 significant digits
+    for value in [data["step"] * 4000, data["size"] / 0.025, *data["scales"].values()]:
+        assert value == float(f"{value:.6g}")
+    for seed in range(3):
+        with monkeypatch.context() as patch:
+            for name, function in nudged_numpy(seed).items():
+                patch.setattr(np, name, function)
+            moved = make()
+        assert moved == expected, f"seed {seed}"

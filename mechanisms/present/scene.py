@@ -444,12 +444,15 @@ def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Seque
     for kind in dict.fromkeys(a.kind for a in arrows):
         longest = max((float(np.nanmax(np.abs(m["vectors"][i]), initial=0.0)) for m in members
                        for i, a in enumerate(arrows) if a.kind == kind), default=0.0)
-        scales[kind] = _ARROW_SHARE * size / longest if longest > 0 and math.isfinite(longest) else 0.0
+        scales[kind] = _significant(_ARROW_SHARE * size / longest) if longest > 0 and math.isfinite(longest) else 0.0
     for m in members:                           # the arrows' tips are in the figure too
         for i, a in enumerate(arrows):
             tips = m["where"][a.at] + scales[a.kind] * m["vectors"][i]
             everything = np.concatenate([everything, tips[np.isfinite(tips)]])
-    extent = float(max(np.ptp(everything.real), np.ptp(everything.imag))) or 1.0
+    # the extent (and so the step, the joints' size and the view's margin) and the arrows' scales are
+    # stored: rounded to 6 digits, they do not depend on the last bits of the processor's sines and
+    # absolute values of complex numbers, which the positions and vectors they are computed from do
+    extent = _significant(float(max(np.ptp(everything.real), np.ptp(everything.imag))) or 1.0)
     step = extent / STEPS
     x0, y0 = float(everything.real.min()), float(everything.imag.min())
     origin = (_fixed(x0, step), _fixed(y0, step))
@@ -487,6 +490,11 @@ def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Seque
             "vectors": [_vector(v, scales[a.kind] / step) for a, v in zip(arrows, m["vectors"])],
         })
     return data
+
+
+def _significant(value: float) -> float:
+    """``value`` rounded to 6 significant digits: a number stored in a scene that round-off must not move."""
+    return float(f"{value:.6g}")
 
 
 def _fixed(value: float, step: float) -> float:
