@@ -229,11 +229,23 @@ def _flat(row: dict) -> dict:
         for name, values in row[group].items():
             for key, value in values.items():
                 flat[f"{name}.{key}"] = value
+    if "forces" in row:
+        from .analysis.kinetostatics import force_columns
+        flat |= force_columns(row["forces"])
     return flat
 
 
+def _blocks(row: dict, group: str) -> dict:
+    """A group of a row as the text table's blocks (the forces: a block each for M_d, a joint, a sliding pair)."""
+    if group != "forces":
+        return row[group]
+    from .analysis.kinetostatics import force_blocks
+    return force_blocks(row["forces"]) if "forces" in row else {}
+
+
 _UNITS = {"angle_deg": "°", "omega": "1/s", "alpha": "1/s²", "x": "m", "y": "m", "vx": "m/s", "vy": "m/s",
-          "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s", "a": "m/s²", "coriolis": "m/s²"}
+          "ax": "m/s²", "ay": "m/s²", "s": "m", "v": "m/s", "a": "m/s²", "coriolis": "m/s²",
+          "M_d": "N·m", "Fx": "N", "Fy": "N", "N": "N", "M": "N·m"}
 
 CHUNK = 4096
 """Crank positions solved, formatted and written at a time: the table's memory does not grow with its length."""
@@ -256,11 +268,13 @@ class _Table:
     """
 
     def __init__(self, mechanism: Mechanism, degree_chunks: Callable[[], Iterator[np.ndarray]], omega: float,
-                 alpha: float, points: Sequence[tuple[str, str, float, float]], asked: dict[str, Any] | None = None):
+                 alpha: float, points: Sequence[tuple[str, str, float, float]], asked: dict[str, Any] | None = None,
+                 forces: bool = False):
         """``degree_chunks()`` yields the crank angles in degrees as asked, a chunk at a time; ``asked`` holds the
-        mechanism's parameters as given on the command line (angles in degrees), for the JSON head."""
+        mechanism's parameters as given on the command line (angles in degrees), for the JSON head; ``forces``
+        adds each row's joint forces and driving torque (:func:`~mechanisms.analysis.kinetostatics.force_rows`)."""
         self.mechanism, self.degree_chunks, self.omega, self.alpha = mechanism, degree_chunks, omega, alpha
-        self.points, self.asked = points, asked
+        self.points, self.asked, self.forces = points, asked, forces
 
     def phi_chunks(self) -> Iterator[tuple[np.ndarray, np.ndarray]]:
         """Each chunk's crank angles as asked (°) and as solved (rad, reduced exactly: :func:`to_radians`)."""
@@ -278,7 +292,12 @@ class _Table:
     def rows(self):
         """The rows of each chunk (lists of dicts, keys as in docs/DESIGN.md's JSON)."""
         for degrees, solution in self.solutions():
-            yield kinematic_table(self.mechanism, solution, self.points, phi_deg=degrees)
+            rows = kinematic_table(self.mechanism, solution, self.points, phi_deg=degrees)
+            if self.forces:
+                from .analysis.kinetostatics import force_rows, linkage_forces
+                for row, forces in zip(rows, force_rows(linkage_forces(self.mechanism, solution))):
+                    row["forces"] = forces
+            yield rows
 
     def check(self) -> list[str]:
         """Solve every position once (positions only) before anything is written: an input that cannot be
@@ -294,6 +313,9 @@ class _Table:
                     # the first chunk to the full order, so that the crank's speed is checked too
                     solution = self.mechanism.solve(phi, self.omega, self.alpha, order=0 if index else 2)
                 joints = solution.point_names
+                if not index and self.forces:    # a class III group is refused before anything is written
+                    from .analysis.kinetostatics import linkage_forces
+                    linkage_forces(self.mechanism, solution)
                 if not index:    # the points' distances too (the links are named by _table, after this)
                     for _, link, u, w in self.points:
                         if link in self.mechanism.links:
@@ -347,8 +369,8 @@ class _Table:
         columns: dict[tuple[str, str], dict[str, tuple[float, dict[int, float], bool]]] = {}
         for rows in self.rows():
             for row in rows:
-                for group in ("links", "points", "sliders"):
-                    for name, values in row[group].items():
+                for group in ("links", "points", "sliders", "forces"):
+                    for name, values in _blocks(row, group).items():
                         block = columns.setdefault((group, name), {})
                         for key, value in values.items():
                             scale, by_width, none = block.get(key, (0.0, {}, False))
@@ -367,7 +389,7 @@ class _Table:
         out.write(f"{mechanism.describe()}; omega = {self.omega:g} 1/s, alpha = {self.alpha:g} 1/s²")
         columns = self._columns()
         phi_width = max((len(f"{row['phi_deg']:.1f}") for rows in self.rows() for row in rows), default=0)
-        for group, label in (("links", "link"), ("points", "point"), ("sliders", "slider")):
+        for group, label in (("links", "link"), ("points", "point"), ("sliders", "slider"), ("forces", "force:")):
             for (kind, name), block in columns.items():
                 if kind != group:
                     continue
@@ -383,7 +405,8 @@ class _Table:
                 for rows in self.rows():
                     lines = []
                     for r in rows:
-                        cells = [f"{r['phi_deg']:.1f}"] + [_readable(r[group][name][k], block[k][0]) for k in keys]
+                        cells = [f"{r['phi_deg']:.1f}"] + [_readable(_blocks(r, group)[name][k], block[k][0])
+                                                           for k in keys]
                         lines.append("  ".join(c.rjust(w) for c, w in zip(cells, widths)))
                     out.write("\n" + "\n".join(lines))
 
@@ -408,7 +431,7 @@ def _table(args: argparse.Namespace, out) -> None:
                 yield np.arange(start, min(start + CHUNK, count)) * 360.0 / positions
 
     asked = {p.name: getattr(args, p.name) for p in mechanism.cli_parameters} if args.mechanism != "file" else None
-    table = _Table(mechanism, degree_chunks, args.omega, args.alpha, points, asked)
+    table = _Table(mechanism, degree_chunks, args.omega, args.alpha, points, asked, getattr(args, "forces", False))
     joints = table.check()
     for name, link, _, _ in points:
         if name in joints or [n for n, *_ in points].count(name) > 1:
@@ -454,6 +477,9 @@ def build_parser() -> argparse.ArgumentParser:
                            epilog=FORMAT_SUMMARY, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub.add_argument("path", metavar="FILE.toml", help="the linkage file, or the name of a shipped example")
     _add_table_options(sub)
+    sub.add_argument("--forces", action="store_true",
+                     help="add the driving torque and the joint forces from the file's [[mass]], [[load]] and gravity "
+                          "(N, N·m; a file with none of them: all zero)")
     structure = commands.add_parser(
         "structure", help="structural analysis of a linkage file: links, pairs, degrees of freedom, Assur groups",
         description="Print the links, the kinematic pairs, the degrees of freedom by the structural "
@@ -580,33 +606,20 @@ def _bench(args: argparse.Namespace) -> str:
     return "\n\n".join(parts + ([bench.format_startup_text(report["startup"])] if "startup" in report else []))
 
 
-class _AssignableMechanisms:
-    """The names ``assign`` takes, looked up only when an ``assign`` command is parsed or its help is shown:
-    the course tools (and the analysis layer that registers the tasks) stay unimported for ``table``."""
-
-    def _names(self) -> list[str]:
-        from .course.assign import TASKS
-
-        return sorted(TASKS)
-
-    def __contains__(self, name: object) -> bool:
-        return name in self._names()
-
-    def __iter__(self):
-        return iter(self._names())
-
-
 def _add_course_commands(commands) -> None:
     """The subcommands ``assign`` and ``check``: course assignments (:mod:`mechanisms.assign`) and
     their grading (:mod:`mechanisms.grading`)."""
     from .course.grading import DEFAULT_RELATIVE
 
     assign = commands.add_parser(
-        "assign", help="make a variant of a mechanism for every student: sheets and an answer key",
-        description="Make N valid variants of a mechanism (lengths, crank speed, crank positions), a printable "
-                    "sheet for each (HTML and Markdown), an answer form for each, and one answer key (key.csv).")
-    assign.add_argument("mechanism", choices=_AssignableMechanisms(), metavar="MECHANISM",
-                        help="one of %(choices)s")
+        "assign", help="make a variant of a mechanism or a linkage file for every student: sheets and an answer key",
+        description="Make N valid variants of a mechanism or of the linkage in a file (lengths, crank speed, crank "
+                    "positions), a printable sheet for each (HTML and Markdown), an answer form for each, one "
+                    "answer key (key.csv) with its tolerances (key-tolerances.csv) and, for a file, each "
+                    "variant's own linkage file (sNN.toml). A file's [variants] table may set the ranges "
+                    "(see mechanisms.course.variants).")
+    assign.add_argument("mechanism", metavar="MECHANISM|FILE.toml",
+                        help="crank-slider, four-bar, slotted-lever, a linkage file or a shipped example's name")
     assign.add_argument("--students", type=_cli_whole, default=None,
                         help="number of students N (variants s01 … sNN); with --roster, the list's length")
     assign.add_argument("--roster", metavar="CLASS.csv",
@@ -617,15 +630,29 @@ def _add_course_commands(commands) -> None:
                         help="seed of the random variants (default: a new one, printed so the run can be repeated)")
     assign.add_argument("--positions", type=_cli_whole, default=3, help="crank positions per variant (default 3)")
     assign.add_argument("--out", default="assignment", help="output folder (default ./assignment)")
+    assign.add_argument("--ask", metavar="COLUMN,…", default=None,
+                        help="the quantities asked, as the table's CSV columns (JOINT.x|y|vx|vy|ax|ay, "
+                             "LINK.angle_deg|omega|alpha, BLOCK.s|v|a; with masses JOINT.F, driving_torque); "
+                             "default: the output joint's motion and every link's rates")
+    assign.add_argument("--tolerance", action="append", default=[], metavar="TARGET=VALUE",
+                        help="a tolerance: TARGET a column or a kind (angle, length, velocity, acceleration, "
+                             "angular-velocity, angular-acceleration, force, torque), VALUE a percentage and/or an "
+                             "absolute amount: B.vx=2%%, angle=0.5deg, velocity=2%%,0.01 (repeatable)")
+    assign.add_argument("--plan", action="store_true",
+                        help="answers read off a drawing: 3 %% and 1 mm of the plan at its scale (chapter 10)")
+    assign.add_argument("--moodle-quiz", metavar="QUIZ.xml", default=None, dest="moodle_quiz",
+                        help="also write a Moodle quiz (Moodle XML): one Cloze question per variant, graded by Moodle")
     check = commands.add_parser(
         "check", help="grade answer files against an answer key",
         description="Grade answer files against the key written by `assign`: per student and per quantity, what is "
                     "right, what is wrong and by how much, and which answers are missing or unreadable.")
     check.add_argument("key", metavar="KEY.csv", help="the answer key written by `assign`")
     check.add_argument("answers", metavar="ANSWERS.csv", nargs="+", help="one or more answer files")
-    check.add_argument("--relative", type=_cli_number, default=100 * DEFAULT_RELATIVE, metavar="PERCENT",
-                       help=f"relative tolerance in %% (default {100 * DEFAULT_RELATIVE:g}); each kind of quantity "
-                            "also has an absolute floor")
+    check.add_argument("--relative", type=_cli_number, default=None, metavar="PERCENT",
+                       help=f"relative tolerance in %% (default: the key's tolerances, key-tolerances.csv beside it, "
+                            f"else {100 * DEFAULT_RELATIVE:g}); each kind of quantity also has an absolute floor")
+    check.add_argument("--tolerance", action="append", default=[], metavar="TARGET=VALUE",
+                       help="a tolerance instead of the key's, as for assign: B.vx=2%%, angle=0.5deg (repeatable)")
     check.add_argument("--marks", metavar="FILE.csv", help="also write every mark to this CSV file")
     check.add_argument("--moodle", metavar="WORKSHEET.csv",
                        help="fill Moodle's grading worksheet (exported from the assignment) with each student's grade "
@@ -641,7 +668,7 @@ def _add_course_commands(commands) -> None:
 def _assign(args: argparse.Namespace) -> str:
     import secrets
 
-    from .course.assign import make_variants, write_assignment
+    from .course.assign import assignment_task, make_variants, write_assignment
     from .course.roster import read_roster
 
     people = read_roster(args.roster) if args.roster else None
@@ -651,8 +678,16 @@ def _assign(args: argparse.Namespace) -> str:
     if people is None and args.students is None:
         raise InvalidParameterError("--students", None, "a whole number ≥ 1, or a class list given with --roster")
     seed = args.seed if args.seed is not None else secrets.randbelow(10**6)
-    variants = make_variants(args.mechanism, len(people) if people else args.students, seed, args.positions)
-    written = write_assignment(args.mechanism, variants, args.out, seed=seed, people=people)
+    task = assignment_task(args.mechanism, None if args.ask is None else args.ask.split(","))
+    variants = make_variants(task, len(people) if people else args.students, seed, args.positions)
+    written = write_assignment(task, variants, args.out, seed=seed, people=people, tolerance=args.tolerance,
+                               plan=args.plan)
+    quiz = []
+    if args.moodle_quiz:
+        from .course.quiz import write_quiz
+
+        write_quiz(task, variants, args.moodle_quiz, written["key"][0])
+        quiz = [f"  Moodle quiz   {args.moodle_quiz}   (import into the question bank: Moodle XML format)"]
     first, last = variants[0].student, variants[-1].student
     roster = ([f"  class list    {args.roster}: {first} is {people[0].label}, {last} is {people[-1].label} "
                "(names on the sheets; names, e-mails, identifiers in the key)"] if people else [])
@@ -661,16 +696,20 @@ def _assign(args: argparse.Namespace) -> str:
         f"  sheets        {first}.html … {last}.html and {first}.md … {last}.md (drawings {first}.png …)",
         f"  answer forms  {first}-answers.csv … {last}-answers.csv",
         f"  answer key    {written['key'][0].name}   (keep it from the students)",
-        f"  variants      {written['variants'][0].name}", *roster,
+        f"  tolerances    {written['tolerances'][0].name}   (each answer's tolerance, as the sheets state it)",
+        *([f"  linkage files {first}.toml … {last}.toml (each student's linkage, loadable by the package)"]
+          if written["linkages"] else []),
+        f"  variants      {written['variants'][0].name}", *roster, *quiz,
         f"Grade with: python -m mechanisms check {written['key'][0]} ANSWERS.csv …"])
 
 
 def _check(args: argparse.Namespace) -> tuple[str, int]:
     from .course.grading import check_files
 
-    if not (math.isfinite(args.relative) and 0.0 <= args.relative < 100.0):
+    if args.relative is not None and not (math.isfinite(args.relative) and 0.0 <= args.relative < 100.0):
         raise InvalidParameterError("--relative", args.relative, "a percentage from 0 to less than 100")
-    report = check_files(args.key, args.answers, relative=args.relative / 100.0)
+    report = check_files(args.key, args.answers, relative=None if args.relative is None else args.relative / 100.0,
+                         tolerance=args.tolerance)
     if args.marks:
         from .course.csvtext import write_file
 

@@ -25,7 +25,7 @@ def test_assign_then_check_the_key(tmp_path):
     assert made.returncode == 0, made.stderr
     assert "crank-slider: 3 variants (s01 … s03), seed 2026" in made.stdout
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["key.csv", "s01-answers.csv", "s01.html", "s01.md", "s01.png", "s02-answers.csv", "s02.html",
+    assert names == ["key-tolerances.csv", "key.csv", "s01-answers.csv", "s01.html", "s01.md", "s01.png", "s02-answers.csv", "s02.html",
                      "s02.md", "s02.png", "s03-answers.csv", "s03.html", "s03.md", "s03.png", "variants.json"]
     checked = run("check", str(out / "key.csv"), str(out / "key.csv"), "--marks", str(tmp_path / "marks.csv"))
     assert checked.returncode == 0, checked.stderr
@@ -97,7 +97,8 @@ def test_check_with_a_missing_key(tmp_path):
 
 def test_assign_refuses_bad_requests(tmp_path):
     result = run("assign", "gear-train", "--students", "3", "--out", str(tmp_path))
-    assert result.returncode == 2 and "invalid choice: 'gear-train'" in result.stderr
+    assert result.returncode == 2 and "MECHANISM must be one of crank-slider" in result.stderr
+    assert "a linkage file or a shipped example" in result.stderr
     result = run("assign", "four-bar", "--students", "0", "--out", str(tmp_path))
     assert result.returncode == 2 and "students must be a whole number from 1 to 9999" in result.stderr
     result = run("assign", "four-bar", "--students", "2", "--positions", "30", "--out", str(tmp_path))

@@ -60,6 +60,12 @@ class Task:
         What is asked at every position.
     conditions : str
         The validity conditions in words (for the course page and the sheet's footer).
+    eligible : callable, optional
+        ``eligible(mechanism) -> bool array`` over the crank angles 0°, 15°, … 345°: which of them a valid
+        variant may be asked at (None: all of them, the positions drawn independently of the mechanism).
+    document : callable, optional
+        ``document(mechanism, comments) -> str or None``: the variant's own linkage file (TOML), written beside
+        its sheet as ``sNN.toml`` (None: the mechanism has none).
     """
 
     name: str
@@ -69,6 +75,8 @@ class Task:
     data: Callable[..., list[tuple[str, str, str, str]]]
     quantities: tuple[Quantity, ...]
     conditions: str
+    eligible: Callable[[Mechanism], np.ndarray] | None = None
+    document: Callable[..., str | None] | None = None
 
 
 _TASKS: dict[str, Task] = {}

@@ -20,6 +20,7 @@ Column names of the key are those of ``python -m mechanisms table … --format c
 from __future__ import annotations
 
 import base64
+import dataclasses
 import html
 import io
 import json
@@ -28,7 +29,7 @@ import pathlib
 import re
 import warnings
 from dataclasses import dataclass
-from typing import Callable, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -37,6 +38,7 @@ from ..core.errors import SingularPositionWarning, InvalidParameterError, Mechan
 from ..linkages.base import Mechanism, Solution
 from ..present.escape import csv_cell, markdown_text
 from .csvtext import CourseFileError, csv_lines, write_file
+from .grading import TOLERANCES, Rule, default_rule, kind_of, tolerance_rules, tolerances_path
 from .roster import IDENTITY_COLUMNS, Person
 
 TASKS = assignments()
@@ -58,6 +60,9 @@ __all__ = [
     "symbol_markdown",
     "symbol_html",
     "write_assignment",
+    "assignment_task",
+    "key_and_tolerances",
+    "plan_floors",
 ]
 
 KEY_COLUMNS = ("student", "position", "phi_deg")
@@ -123,11 +128,23 @@ class Variant:
                 "omega": self.omega, "positions_deg": list(self.positions_deg)}
 
 
-def quantity_values(solution: Solution, column: str) -> np.ndarray:
+def quantity_values(solution: Solution, column: str, mechanism: Mechanism | None = None) -> np.ndarray:
     """The values of a key column (``NAME.KEY`` as in the ``table`` CSV) at the solution's positions.
 
-    Angles are in degrees, wrapped to [0, 360).
+    Angles are in degrees, wrapped to [0, 360). With the ``mechanism`` (a linkage file's, with its masses),
+    ``driving_torque`` (N·m) and ``JOINT.F``, the magnitude of the force in the hinge at JOINT (N), come from
+    :func:`mechanisms.analysis.kinetostatics.linkage_forces`.
     """
+    if mechanism is not None and (column == "driving_torque" or column.endswith(".F")):
+        from ..analysis.kinetostatics import linkage_forces
+
+        forces = linkage_forces(mechanism, solution)
+        if column == "driving_torque":
+            return np.asarray(forces.driving_torque, dtype=float)
+        joint = column[:-2]
+        if joint in forces.forces:
+            return np.abs(np.asarray(forces.forces[joint]))
+        raise UnknownNameError("hinge", joint, list(forces.forces))
     name, _, key = column.partition(".")
     if name in solution.angle_names and key in ("angle_deg", "omega", "alpha"):
         angle = solution.angle(name)
@@ -164,7 +181,7 @@ def student_ids(count: int) -> list[str]:
 
 
 def make_variant(task: Task | str, seed: int, index: int, student: str | None = None, positions: int = 3,
-                 max_tries: int = 10_000) -> Variant:
+                 max_tries: int = 10_000, retry: int = 0) -> Variant:
     """Variant number ``index`` (0-based) of ``seed``: drawn until the task's checks pass.
 
     Parameters
@@ -179,7 +196,10 @@ def make_variant(task: Task | str, seed: int, index: int, student: str | None = 
         The student's id (default ``s`` and index + 1); it names the student's files, so it must be a plain file
         name (ASCII letters, digits, ``_``, ``-``).
     positions : int
-        Crank positions per variant, 1 to 24.
+        Crank positions per variant, 1 to 24. A task with ``eligible`` (a linkage file's) draws them among the
+        crank angles where the candidate is eligible, and refuses a candidate with too few.
+    retry : int
+        0, or the number of the draw that replaces a variant equal to an earlier one (:func:`make_variants`).
 
     Raises
     ------
@@ -198,14 +218,21 @@ def make_variant(task: Task | str, seed: int, index: int, student: str | None = 
     student = _require_student_id(f"s{index + 1:02d}" if student is None else student)
     seed, index = int(seed), int(index)
     # two independent streams: the positions do not depend on how many candidates were rejected
-    lengths, angles = (np.random.default_rng(s) for s in np.random.SeedSequence(seed, spawn_key=(index,)).spawn(2))
+    spawn = (index,) if not retry else (index, retry)
+    lengths, angles = (np.random.default_rng(s) for s in np.random.SeedSequence(seed, spawn_key=spawn).spawn(2))
     for _ in range(max_tries):
         try:
             mechanism, omega = task.sample(lengths)
+            if task.check(mechanism):
+                continue
+            if task.eligible is None:
+                return Variant(student, mechanism, omega, _positions(angles, positions))
+            allowed = np.flatnonzero(task.eligible(mechanism))
         except MechanismError:
             continue
-        if not task.check(mechanism):
-            return Variant(student, mechanism, omega, _positions(angles, positions))
+        if allowed.size >= positions:
+            chosen = angles.choice(allowed, size=positions, replace=False)
+            return Variant(student, mechanism, omega, tuple(float(STEP_DEG * c) for c in sorted(chosen)))
     raise MechanismError(f"no valid {task.name} variant in {max_tries} draws (seed {seed}, variant {index})")
 
 
@@ -217,7 +244,20 @@ def make_variants(task: Task | str, students: int, seed: int, positions: int = 3
     """
     if not _whole(students) or not 1 <= students <= STUDENTS_MAX:
         raise InvalidParameterError("students", students, f"a whole number from 1 to {STUDENTS_MAX}")
-    return [make_variant(task, seed, i, student, positions) for i, student in enumerate(student_ids(students))]
+    task = _task(task)
+    variants: list[Variant] = []
+    seen: set[str] = set()
+    for i, student in enumerate(student_ids(students)):
+        variant = make_variant(task, seed, i, student, positions)
+        if task.document is not None:     # a linkage file's variants: each different from the ones before
+            for retry in range(1, 1000):
+                fingerprint = f"{task.document(variant.mechanism)}{variant.omega!r}{variant.positions_deg!r}"
+                if fingerprint not in seen:
+                    break
+                variant = make_variant(task, seed, i, student, positions, retry=retry)
+            seen.add(fingerprint)
+        variants.append(variant)
+    return variants
 
 
 def _whole(value: object) -> bool:
@@ -233,20 +273,148 @@ def _task(task: Task | str) -> Task:
     return TASKS[task]
 
 
+def assignment_task(name: str, ask: Sequence[str] | None = None) -> Task:
+    """The task of ``assign NAME``: a named mechanism's (:data:`TASKS`), else a linkage file's or a shipped
+    example's (:func:`mechanisms.course.variants.read_assignment_file`), asking the columns ``ask`` (default: the
+    task's own).
+
+    Raises
+    ------
+    StructureError
+        A file that cannot be read or is no valid linkage.
+    InvalidParameterError, UnknownNameError
+        An empty, repeated or unknown column in ``ask`` (the known ones listed).
+    """
+    columns = None
+    if ask is not None:
+        columns = [c.strip() for c in ask]
+        if not columns or not all(columns) or len(set(columns)) != len(columns):
+            raise InvalidParameterError("--ask", ",".join(ask), "a comma-separated list of different columns")
+    if name in TASKS:
+        task = TASKS[name]
+        if columns is None:
+            return task
+        known = {q.column: q for q in task.quantities}
+        for column in columns:
+            if column not in known:
+                raise UnknownNameError("quantity", column, list(known))
+        return dataclasses.replace(task, quantities=tuple(known[c] for c in columns))
+    from ..linkages.linkage_file import example_files
+    from .variants import read_assignment_file
+
+    if not pathlib.Path(name).exists() and name not in example_files():
+        raise InvalidParameterError("MECHANISM", name, f"one of {', '.join(TASKS)}, a linkage file or a shipped "
+                                    f"example ({', '.join(example_files())})")
+    return read_assignment_file(name).task(columns)
+
+
 def answer_key(task: Task | str, variants: Sequence[Variant]) -> list[dict]:
     """Rows of the key: ``student``, ``position`` (1, 2 …), ``phi_deg`` and one value per quantity."""
+    return key_and_tolerances(task, variants)[0]
+
+
+PLAN_RELATIVE = 0.03
+"""The relative tolerance of an answer read off a plan (``assign --plan``): chapter 10 (§10.2) finds a careful hand
+drawing accurate to about a millimetre, 1–3 % of the vectors of a plan drawn within 100 mm."""
+PLAN_READING_MM = 1.0
+"""How far (mm) a length read off a careful drawing may be from the exact one (chapter 10, §10.2)."""
+PLAN_ANGLE_DEG = 1.0
+"""How far (°) an angle read off a drawing with a protractor may be."""
+
+
+def _link_length(mechanism: Mechanism, link: str) -> float | None:
+    """The longest distance between the link's first joint and another of its joints (m), if known."""
+    pole = mechanism.links.get(link)
+    joints = getattr(mechanism, "link_joints", None)
+    distances = mechanism.preserved_distances()
+    if callable(joints) and link in joints():
+        mine = set(joints()[link])
+        found = [d for (p, q), d in distances.items() if pole in (p, q) and {p, q} <= mine]
+    else:
+        found = [d for (p, q), d in distances.items() if pole in (p, q)]
+    return max(found) if found else None
+
+
+def plan_floors(mechanism: Mechanism, solution: Solution, columns: Sequence[str]) -> dict[str, np.ndarray]:
+    """The absolute tolerance of each column at each position for answers read off a drawing (``--plan``).
+
+    Each position's plans are drawn, as chapter 10 draws them, at the smallest course scale that keeps the
+    largest velocity (acceleration) of a joint within 100 mm (:func:`~mechanisms.analysis.plans.nice_scale`):
+    μ_v, μ_a; the linkage at the scale μ_l that keeps its farthest joint within 100 mm. A reading is good to
+    :data:`PLAN_READING_MM`: a length to μ_l·1 mm, a velocity to μ_v·1 mm, an acceleration to μ_a·1 mm, a link's
+    angular velocity (acceleration) to μ_v·1 mm (μ_a·1 mm) over its length, an angle to :data:`PLAN_ANGLE_DEG`.
+    Columns not read off a plan (forces) keep their kind's floor.
+    """
+    from ..analysis.plans import nice_scale
+
+    points = [solution.point(name) for name in solution.point_names]
+    shape = np.shape(solution.phi)
+
+    def scale(values: list[np.ndarray]) -> np.ndarray:
+        largest = np.max(np.abs(np.asarray(values)), axis=0) if values else np.zeros(shape)
+        return np.array([nice_scale(max(float(v), 1e-12)) for v in np.reshape(largest, -1)]).reshape(shape)
+
+    mu_l = scale([np.full(shape, np.max(np.abs(np.asarray([p.value for p in points]))))])
+    mu_v = scale([np.asarray(p.velocity) for p in points])
+    mu_a = scale([np.asarray(p.acceleration) for p in points])
+    floors: dict[str, np.ndarray] = {}
+    for column in columns:
+        kind = kind_of(column)
+        reading = {"length": mu_l, "velocity": mu_v, "acceleration": mu_a}.get(kind)
+        if reading is not None:
+            floors[column] = reading * PLAN_READING_MM
+        elif kind == "angle":
+            floors[column] = np.full(shape, PLAN_ANGLE_DEG)
+        elif kind in ("angular velocity", "angular acceleration"):
+            length = _link_length(mechanism, column.rpartition(".")[0])
+            base = mu_v if kind == "angular velocity" else mu_a
+            floors[column] = (base * PLAN_READING_MM / length if length else
+                              np.full(shape, TOLERANCES[kind].floor))
+        else:
+            floors[column] = np.full(shape, TOLERANCES[kind].floor)
+    return floors
+
+
+def key_and_tolerances(task: Task | str, variants: Sequence[Variant], tolerance: Sequence[str] = (),
+                       plan: bool = False) -> tuple[list[dict], list[dict], dict[str, dict[str, str]]]:
+    """The key's rows, the tolerance of each of its values (rows of the same layout) and, per student, each
+    column's tolerance in words for the sheet.
+
+    ``tolerance`` are ``--tolerance`` options (:func:`~mechanisms.course.grading.parse_tolerance`); ``plan``
+    the tolerances of answers read off a drawing (:func:`plan_floors`, relative :data:`PLAN_RELATIVE`), unless an
+    option sets a column's own.
+    """
     task = _task(task)
-    rows = []
+    columns = [q.column for q in task.quantities]
+    rules = tolerance_rules(columns, tolerance, PLAN_RELATIVE if plan else None)
+    defaults = tolerance_rules(columns, (), PLAN_RELATIVE if plan else None)
+    rows, tolerances, words = [], [], {}
     for variant in variants:
         with warnings.catch_warnings():
             warnings.simplefilter("error", SingularPositionWarning)   # a valid variant has no singular position
             solution = variant.solve()
-        values = {q.column: quantity_values(solution, q.column) for q in task.quantities}
+        values = {q.column: quantity_values(solution, q.column, variant.mechanism) for q in task.quantities}
+        floors = plan_floors(variant.mechanism, solution, columns) if plan else {}
+        text: dict[str, str] = {}
+        for column in columns:
+            unit = TOLERANCES[kind_of(column)].unit
+            if column in floors and rules[column].floor == defaults[column].floor:
+                text[column] = ((f"{100 * rules[column].relative:g} %, at least " if rules[column].relative else "")
+                                + f"{PLAN_READING_MM:g} mm of the drawing: "
+                                + ", ".join(f"{f:.2g}" for f in floors[column]) + f" {unit}"
+                                if kind_of(column) != "angle" else f"{PLAN_ANGLE_DEG:g} {unit}")
+            else:
+                floors.pop(column, None)
+                text[column] = rules[column].text(unit)
+        words[variant.student] = text
         for i, phi in enumerate(variant.positions_deg):
             row = {"student": variant.student, "position": i + 1, "phi_deg": phi}
             row.update({column: float(v[i]) for column, v in values.items()})
             rows.append(row)
-    return rows
+            tolerances.append({"student": variant.student, "position": i + 1, "phi_deg": phi} | {
+                column: (Rule(rules[column].relative, float(floors[column][i])) if column in floors
+                         else rules[column]).of(float(values[column][i])) for column in columns})
+    return rows, tolerances, words
 
 
 def _write_csv(path: pathlib.Path, columns: Sequence[str], rows: Sequence[dict], what: str) -> None:
@@ -283,8 +451,14 @@ def _name_line(person: Person | None, escape: Callable[[str], str]) -> str:
     return f"Name: {who}" + (f"   Identifier: {escape(person.identifier)}" if person.identifier else "")
 
 
-def _sheet_parts(task: Task, variant: Variant) -> dict:
+def _sheet_parts(task: Task, variant: Variant, tolerances: Mapping[str, str] | None = None) -> dict:
+    if tolerances is None:
+        tolerances = {q.column: default_rule(q.column).text(TOLERANCES[kind_of(q.column)].unit) for q in task.quantities}
+    symbols = [q.symbol for q in task.quantities]
+    plain = all(symbols) and len(set(symbols)) == len(symbols)     # else the answer table names the columns
     return {
+        "tolerances": tolerances,
+        "label": {q.column: (q.symbol if plain else "") for q in task.quantities},
         "title": f"{task.title}: assignment {variant.student}",
         "data": task.data(variant.mechanism) + [
             ("φ_t = ω_1", "crank angular velocity, constant, counter-clockwise", f"{variant.omega:g}", "1/s")],
@@ -298,6 +472,11 @@ INSTRUCTIONS = (
     "speed, counter-clockwise. Give numbers with at least four significant figures, in the units asked for, "
     "with a decimal point. Hand in the answer form (the CSV file {student}-answers.csv, or the lines below) "
     "with every cell filled in; leave a cell empty only if you have no answer.")
+
+
+TOLERANCE_NOTE = (
+    "An answer is right when it differs from the exact value by at most its tolerance: the larger of the "
+    "percentage of the exact value and the absolute amount given for it; angles are compared modulo 360°.")
 
 
 def _md(text: str) -> str:
@@ -335,11 +514,13 @@ def symbol_html(symbol: str) -> str:
     return "".join(out)
 
 
-def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None, person: Person | None = None) -> str:
+def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None, person: Person | None = None,
+                   tolerances: Mapping[str, str] | None = None) -> str:
     """The sheet as Markdown; ``image`` is the drawing's file name (omitted if None); ``person`` the student of
-    the class list (None: a line to write the name on)."""
+    the class list (None: a line to write the name on); ``tolerances`` each column's tolerance in words (default:
+    the kind's, :func:`~mechanisms.course.grading.default_rule`)."""
     task = _task(task)
-    parts = _sheet_parts(task, variant)
+    parts = _sheet_parts(task, variant, tolerances)
     lines = [f"# {parts['title']}", "", _name_line(person, markdown_text), ""]
     if image:
         lines += [f"![The mechanism of {variant.student}]({image})", ""]
@@ -347,11 +528,12 @@ def sheet_markdown(task: Task | str, variant: Variant, image: str | None = None,
     lines += [f"| {symbol_markdown(symbol)} | " + " | ".join(_md(c) for c in rest) + " |"
               for symbol, *rest in parts["data"]]
     lines += ["", "## Task", "", f"Find, at the crank angles $φ$ = {parts['positions']}:", "",
-              "| column | symbol | quantity | unit |", "|---|---|---|---|"]
-    lines += [f"| `{q.column}` | {symbol_markdown(q.symbol)} | {_md(q.meaning)} | {_md(q.unit)} |"
-              for q in task.quantities]
-    lines += ["", INSTRUCTIONS.format(student=variant.student), "", "## Answers", "",
-              "| position | $φ$, ° | " + " | ".join(f"{symbol_markdown(q.symbol)}, {q.unit}" for q in task.quantities)
+              "| column | symbol | quantity | unit | tolerance |", "|---|---|---|---|---|"]
+    lines += [f"| `{q.column}` | {symbol_markdown(q.symbol)} | {_md(q.meaning)} | {_md(q.unit)} | "
+              f"{_md(parts['tolerances'][q.column])} |" for q in task.quantities]
+    lines += ["", INSTRUCTIONS.format(student=variant.student), "", TOLERANCE_NOTE, "", "## Answers", "",
+              "| position | $φ$, ° | " + " | ".join(f"{symbol_markdown(parts['label'][q.column]) or _md(q.column)}, "
+                                                    f"{q.unit}" for q in task.quantities)
               + " |",
               "|---|---|" + "---|" * len(task.quantities)]
     lines += [f"| {i + 1} | {p:g} | " + " | ".join(" " for _ in task.quantities) + " |"
@@ -387,11 +569,12 @@ def _numeric(text: str) -> str:
     return ' class="num"'
 
 
-def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None, person: Person | None = None) -> str:
-    """The sheet as one self-contained HTML page (the drawing embedded as a base64 PNG); ``person`` as for
-    :func:`sheet_markdown`."""
+def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None, person: Person | None = None,
+               tolerances: Mapping[str, str] | None = None) -> str:
+    """The sheet as one self-contained HTML page (the drawing embedded as a base64 PNG); ``person`` and
+    ``tolerances`` as for :func:`sheet_markdown`."""
     task = _task(task)
-    parts = _sheet_parts(task, variant)
+    parts = _sheet_parts(task, variant, tolerances)
     e = html.escape
     png = drawing_png(variant) if png is None else png
     out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
@@ -404,12 +587,13 @@ def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None, per
     out += [f'<tr><td>{symbol_html(s)}</td><td>{e(m)}</td><td{_numeric(v)}>{e(v)}</td><td>{e(u)}</td></tr>'
             for s, m, v, u in parts["data"]]
     out += ["</table>", "<h2>Task</h2>", f"<p>Find, at the crank angles <i>φ</i> = {e(parts['positions'])}:</p>",
-            "<table><tr><th>column</th><th>symbol</th><th>quantity</th><th>unit</th></tr>"]
+            "<table><tr><th>column</th><th>symbol</th><th>quantity</th><th>unit</th><th>tolerance</th></tr>"]
     out += [f"<tr><td><code>{e(q.column)}</code></td><td>{symbol_html(q.symbol)}</td><td>{e(q.meaning)}</td>"
-            f"<td>{e(q.unit)}</td></tr>" for q in task.quantities]
-    out += ["</table>", f"<p>{e(INSTRUCTIONS.format(student=variant.student))}</p>", "<h2>Answers</h2>",
-            '<table class="answers"><tr><th>position</th><th><i>φ</i>, °</th>'
-            + "".join(f"<th>{symbol_html(q.symbol)}, {e(q.unit)}</th>" for q in task.quantities) + "</tr>"]
+            f"<td>{e(q.unit)}</td><td>{e(parts['tolerances'][q.column])}</td></tr>" for q in task.quantities]
+    out += ["</table>", f"<p>{e(INSTRUCTIONS.format(student=variant.student))}</p>", f"<p>{e(TOLERANCE_NOTE)}</p>",
+            "<h2>Answers</h2>", '<table class="answers"><tr><th>position</th><th><i>φ</i>, °</th>'
+            + "".join(f"<th>{symbol_html(parts['label'][q.column]) or e(q.column)}, {e(q.unit)}</th>"
+                      for q in task.quantities) + "</tr>"]
     out += [f'<tr><td class="num">{i + 1}</td><td class="num">{p:g}</td>' + "<td></td>" * len(task.quantities)
             + "</tr>" for i, p in enumerate(variant.positions_deg)]
     form = [",".join(parts["header"])] + [f"{variant.student},{i + 1},{p:g}" + "," * len(task.quantities)
@@ -420,12 +604,21 @@ def sheet_html(task: Task | str, variant: Variant, png: bytes | None = None, per
     return "\n".join(out)
 
 
+def variant_comments(task: Task, variant: Variant, seed: int | None) -> list[str]:
+    """The comment lines at the head of a variant's linkage file: whose it is and the crank's motion."""
+    return [f"Assignment {task.name}, variant {variant.student}" + (f" (seed {seed})" if seed is not None else "")
+            + ": written by python -m mechanisms assign.",
+            f"The crank turns counter-clockwise at omega = {variant.omega!r} 1/s (constant: alpha = 0).",
+            "Asked at the crank angles phi_deg = " + ", ".join(repr(p) for p in variant.positions_deg) + "."]
+
+
 def _identity(person: Person) -> dict[str, str]:
     return {"name": person.name, "email": person.email, "identifier": person.identifier}
 
 
 def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | pathlib.Path,
-                     seed: int | None = None, people: Sequence[Person] | None = None) -> dict[str, list[pathlib.Path]]:
+                     seed: int | None = None, people: Sequence[Person] | None = None, tolerance: Sequence[str] = (),
+                     plan: bool = False) -> dict[str, list[pathlib.Path]]:
     """Write the sheets, answer forms, the key and ``variants.json`` into ``out`` (created if missing).
 
     ``people`` (one per variant, in order: :func:`mechanisms.course.roster.read_roster`) puts each student's
@@ -451,7 +644,8 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     """
     task = _task(task)
     out = pathlib.Path(out)
-    written: dict[str, list[pathlib.Path]] = {"sheets": [], "forms": [], "key": [], "variants": []}
+    written: dict[str, list[pathlib.Path]] = {"sheets": [], "forms": [], "key": [], "variants": [], "linkages": [],
+                                              "tolerances": []}
     if people is not None and len(people) != len(variants):
         raise InvalidParameterError("people", len(people), f"one person per variant ({len(variants)})")
     ids = [_require_student_id(v.student).casefold() for v in variants]
@@ -465,12 +659,19 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
         raise CourseFileError(f"output folder {out}: cannot be made ({failure.strerror or failure})") from None
     who = dict(zip((v.student for v in variants), people or ()))
     columns = list(KEY_COLUMNS) + [q.column for q in task.quantities]
+    rows, tolerances, words = key_and_tolerances(task, variants, tolerance, plan)
     for variant in variants:
         png = drawing_png(variant)
         write_file(out / f"{variant.student}.png", png, "drawing")
+        document = task.document(variant.mechanism, variant_comments(task, variant, seed)) if task.document else None
+        if document is not None:
+            path = out / f"{variant.student}.toml"
+            write_file(path, document, "linkage file")
+            written["linkages"].append(path)
         person = who.get(variant.student)
-        for suffix, text in ((".html", sheet_html(task, variant, png, person)),
-                             (".md", sheet_markdown(task, variant, f"{variant.student}.png", person))):
+        text_of = words[variant.student]
+        for suffix, text in ((".html", sheet_html(task, variant, png, person, text_of)),
+                             (".md", sheet_markdown(task, variant, f"{variant.student}.png", person, text_of))):
             path = out / f"{variant.student}{suffix}"
             write_file(path, text, "sheet")
             written["sheets"].append(path)
@@ -479,14 +680,18 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
                                    for i, p in enumerate(variant.positions_deg)], "answer form")
         written["forms"].append(form)
     key = out / "key.csv"
-    rows = answer_key(task, variants)
     if who:      # who each student is, after the id: student,name,email,identifier,position,phi_deg,…
         rows = [{"student": row["student"], **_identity(who[row["student"]])} | row for row in rows]
         columns = [columns[0], *IDENTITY_COLUMNS, *columns[1:]]
     _write_csv(key, columns, rows, "answer key")
     written["key"].append(key)
+    _write_csv(tolerances_path(key), [c for c in columns if c not in IDENTITY_COLUMNS], tolerances, "tolerance file")
+    written["tolerances"].append(tolerances_path(key))
     record = out / "variants.json"
-    records = [v.record() | (_identity(who[v.student]) if who else {}) for v in variants]
+    records = [(v.record() if task.document is None else
+                {"student": v.student, "mechanism": task.name, "file": f"{v.student}.toml", "omega": v.omega,
+                 "alpha": 0.0, "positions_deg": list(v.positions_deg)})
+               | (_identity(who[v.student]) if who else {}) for v in variants]
     write_file(record, json.dumps({"mechanism": task.name, "seed": seed, "variants": records}, indent=1,
                                   ensure_ascii=False) + "\n", "variants record")
     written["variants"].append(record)

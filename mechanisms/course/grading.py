@@ -29,6 +29,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
+from ..core.errors import InvalidParameterError
 from ..present.escape import csv_cell_value
 from .csvtext import CourseFileError, csv_lines, header_key, read_csv_text
 from .roster import IDENTITY_COLUMNS, Person
@@ -43,6 +44,11 @@ __all__ = [
     "Mark",
     "Report",
     "kind_of",
+    "Rule",
+    "default_rule",
+    "parse_tolerance",
+    "tolerance_rules",
+    "tolerances_path",
     "tolerance",
     "difference",
     "parse_number",
@@ -84,6 +90,8 @@ TOLERANCES: dict[str, Tolerance] = {
     "acceleration": Tolerance("acceleration", 0.05, "m/s²"),
     "angular velocity": Tolerance("angular velocity", 0.01, "1/s"),
     "angular acceleration": Tolerance("angular acceleration", 0.5, "1/s²"),
+    "force": Tolerance("force", 0.1, "N"),
+    "torque": Tolerance("torque", 0.01, "N·m"),
 }
 """Tolerances by kind of quantity (see the module's notes)."""
 
@@ -92,7 +100,10 @@ _SUFFIX_KINDS = {
     "s": "length", "x": "length", "y": "length",
     "v": "velocity", "vx": "velocity", "vy": "velocity",
     "a": "acceleration", "ax": "acceleration", "ay": "acceleration", "coriolis": "acceleration",
+    "F": "force",
 }
+_WHOLE_KINDS = {"driving_torque": "torque"}
+"""Quantity columns without a ``NAME.`` part."""
 ID_COLUMNS = ("student", "position")
 PHI = "phi_deg"
 PHI_TOLERANCE = 1e-6
@@ -111,17 +122,132 @@ def kind_of(column: str) -> str:
     GradingError
         If the name has no known ``KEY``.
     """
-    _, dot, key = column.partition(".")
+    if column in _WHOLE_KINDS:
+        return _WHOLE_KINDS[column]
+    _, dot, key = column.rpartition(".")
     if not dot or key not in _SUFFIX_KINDS:
         raise GradingError(f"{column!r} is not a quantity column: expected NAME.KEY with KEY one of "
-                           + ", ".join(_SUFFIX_KINDS))
+                           + ", ".join(_SUFFIX_KINDS) + " (or " + ", ".join(_WHOLE_KINDS) + ")")
     return _SUFFIX_KINDS[key]
 
 
 def tolerance(column: str, key_value: float, relative: float = DEFAULT_RELATIVE) -> float:
     """The largest accepted |answer − key| for a key value of a column (in the column's unit)."""
+    return default_rule(column, relative).of(key_value)
+
+
+@dataclass(frozen=True)
+class Rule:
+    """The tolerance of one quantity: ``max(relative·|key|, floor)``, the floor in the quantity's unit."""
+
+    relative: float
+    floor: float
+
+    def of(self, key_value: float) -> float:
+        """The largest accepted |answer − key| for a key value."""
+        return max(self.relative * abs(key_value), self.floor)
+
+    def text(self, unit: str) -> str:
+        """``1 %, at least 0.005 m/s`` or ``0.1 °``."""
+        if not self.relative:
+            return f"{self.floor:g} {unit}"
+        return f"{100 * self.relative:g} %, at least {self.floor:g} {unit}"
+
+
+def default_rule(column: str, relative: float = DEFAULT_RELATIVE) -> Rule:
+    """A column's tolerance by its kind (:data:`TOLERANCES`), with the relative part ``relative`` (not for angles)."""
     rule = TOLERANCES[kind_of(column)]
-    return max(relative * abs(key_value), rule.floor) if rule.relative else rule.floor
+    return Rule(relative if rule.relative else 0.0, rule.floor)
+
+
+_TOLERANCE_UNITS = {
+    "deg": ("angle", 1.0), "°": ("angle", 1.0), "m": ("length", 1.0), "mm": ("length", 1e-3),
+    "m/s": ("velocity", 1.0), "mm/s": ("velocity", 1e-3), "m/s2": ("acceleration", 1.0),
+    "m/s²": ("acceleration", 1.0), "1/s": ("angular velocity", 1.0), "1/s2": ("angular acceleration", 1.0),
+    "1/s²": ("angular acceleration", 1.0), "N": ("force", 1.0), "N·m": ("torque", 1.0), "Nm": ("torque", 1.0),
+}
+"""Units a ``--tolerance`` floor may be written in, with their kind and factor to the column's unit."""
+_TOLERANCE_PART = re.compile(r"\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(%|[^\s0-9.][^\s]*)?\s*")
+
+
+def parse_tolerance(text: str, columns: Sequence[str]) -> tuple[list[str], float | None, float | None]:
+    """One ``--tolerance`` option: ``TARGET=VALUE[,VALUE]`` → (the columns it sets, relative, floor).
+
+    TARGET is a quantity column (``B.vx``) or a kind (``angle``, ``length``, ``velocity``, ``acceleration``,
+    ``angular-velocity``, ``angular-acceleration``, ``force``, ``torque``: every column of that kind). A VALUE
+    ending in ``%`` is the relative part (``2%``); any other is the absolute floor, in the column's unit or in a
+    unit written after it (``0.5deg``, ``0.5mm``, ``5mm/s``). ``B.vx=2%,0.01`` sets both; what is not given keeps
+    its default.
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming ``--tolerance``, the text and what is wrong.
+    """
+    def bad(why: str) -> InvalidParameterError:
+        return InvalidParameterError("--tolerance", text, f"TARGET=VALUE with TARGET a column ({', '.join(columns)}) "
+                                     f"or a kind ({', '.join(k.replace(' ', '-') for k in TOLERANCES)}) and VALUE "
+                                     f"a percentage (2%) and/or an absolute tolerance (0.5deg, 0.01): {why}")
+
+    target, equals, value = (part.strip() for part in text.partition("="))
+    if not equals or not target or not value:
+        raise bad("no '='")
+    kind_name = target.replace("-", " ").replace("_", " ").lower()
+    if target in columns:
+        chosen, kind = [target], kind_of(target)
+    elif kind_name in TOLERANCES:
+        chosen, kind = [c for c in columns if kind_of(c) == kind_name], kind_name
+        if not chosen:
+            raise bad(f"no column of the kind {kind_name!r} is asked")
+    else:
+        raise bad(f"{target!r} is neither")
+    relative = floor = None
+    parts = value.split(",")
+    if len(parts) > 2:
+        raise bad("at most a percentage and a floor")
+    for part in parts:
+        match = _TOLERANCE_PART.fullmatch(part)
+        if not match:
+            raise bad(f"{part.strip()!r} is not a number with an optional unit")
+        number, unit = float(match[1]), match[2]
+        if not math.isfinite(number):
+            raise bad(f"{part.strip()!r} is not finite")
+        if unit == "%":
+            if relative is not None or kind == "angle" or not number < 100:
+                raise bad("one percentage below 100 (angles take an absolute tolerance only)")
+            relative = number / 100.0
+            continue
+        if floor is not None:
+            raise bad("one absolute tolerance")
+        if unit is not None:
+            if unit not in _TOLERANCE_UNITS or _TOLERANCE_UNITS[unit][0] != kind:
+                units = [u for u, (k, _) in _TOLERANCE_UNITS.items() if k == kind]
+                raise bad(f"the unit {unit!r} is not one of a {kind} ({', '.join(units)})")
+            number *= _TOLERANCE_UNITS[unit][1]
+        floor = number
+    return chosen, relative, floor
+
+
+def tolerance_rules(columns: Sequence[str], options: Sequence[str] = (), relative: float | None = None) -> dict[str, Rule]:
+    """Every column's :class:`Rule`: the kind's default (relative part ``relative``, default 1 %), then the
+    ``--tolerance`` options (:func:`parse_tolerance`) in order, a kind's before a column's."""
+    relative = DEFAULT_RELATIVE if relative is None else relative
+    rules = {column: default_rule(column, relative) for column in columns}
+    parsed = [parse_tolerance(option, columns) for option in options]
+    for only_columns in (False, True):
+        for option, (chosen, rel, floor) in zip(options, parsed):
+            if (option.partition("=")[0].strip() in columns) != only_columns:
+                continue
+            for column in chosen:
+                old = rules[column]
+                rules[column] = Rule(old.relative if rel is None else rel, old.floor if floor is None else floor)
+    return rules
+
+
+def tolerances_path(key_path: str | pathlib.Path) -> pathlib.Path:
+    """The file of the key's tolerances, beside it: ``key.csv`` → ``key-tolerances.csv``."""
+    key_path = pathlib.Path(key_path)
+    return key_path.with_name(f"{key_path.stem}-tolerances{key_path.suffix or '.csv'}")
 
 
 def _wrap_degrees(angle: float) -> float:
@@ -236,6 +362,9 @@ class Key:
     values: dict[tuple[str, int], dict[str, float]]
     people: dict[str, Person] = field(default_factory=dict)
     """Who each student is, if the key was made from a class list (else empty)."""
+    tolerances: dict[tuple[str, int], dict[str, float]] = field(default_factory=dict)
+    """The accepted |answer − key| of every value, from the key's tolerance file (``key-tolerances.csv``, written
+    by ``assign``) if there is one (else empty)."""
 
     @property
     def students(self) -> list[str]:
@@ -301,7 +430,37 @@ def read_key(path: str | pathlib.Path) -> Key:
                                    f"{people[student].label!r} on an earlier line")
     if not values:
         raise GradingError(f"key {path}: no rows")
-    return Key(path, quantities, phi, values, people)
+    key = Key(path, quantities, phi, values, people)
+    if tolerances_path(path).exists():
+        key.tolerances = _read_tolerances(tolerances_path(path), key)
+    return key
+
+
+def _read_tolerances(path: pathlib.Path, key: Key) -> dict[tuple[str, int], dict[str, float]]:
+    """The key's tolerance file: the key's layout, each value the accepted |answer − key| (≥ 0)."""
+    header, rows, comma = _read_table(path, "tolerance file")
+    columns = [h for h in header if h not in IDENTITY_COLUMNS]
+    if columns != [*ID_COLUMNS, PHI, *key.quantities]:
+        raise GradingError(f"tolerance file {path}: the columns must be the key's, "
+                           f"{','.join([*ID_COLUMNS, PHI, *key.quantities])}; got {','.join(header)}")
+    found: dict[tuple[str, int], dict[str, float]] = {}
+    for line, row, overflow in rows:
+        where = f"tolerance file {path}, line {line}"
+        try:
+            if overflow:
+                raise ValueError("more cells than columns")
+            place = (row["student"].strip(), _position(row["position"]))
+            if place not in key.values:
+                raise ValueError(f"student {place[0]} position {place[1]} is not in the key")
+            found[place] = {q: parse_number(row[q], comma) for q in key.quantities}
+            if any(v < 0 for v in found[place].values()):
+                raise ValueError("a tolerance is negative")
+        except ValueError as error:
+            raise GradingError(f"{where}: {error}") from None
+    missing = [p for p in key.values if p not in found]
+    if missing:
+        raise GradingError(f"tolerance file {path}: no row for student {missing[0][0]} position {missing[0][1]}")
+    return found
 
 
 @dataclass
@@ -418,6 +577,8 @@ class Report:
     marks: list[Mark]
     problems: list[str]
     relative: float
+    rules: dict[str, Rule] = field(default_factory=dict)
+    """The tolerance of each quantity, when not the key's own (``key.tolerances``)."""
 
     def of(self, student: str) -> list[Mark]:
         return [m for m in self.marks if m.student == student]
@@ -430,11 +591,8 @@ class Report:
     def text(self) -> str:
         """The report for a person: per student, per quantity, and the file problems."""
         unit = {q: TOLERANCES[kind_of(q)].unit for q in self.key.quantities}
-        rules = ", ".join(f"{t.kind} {t.floor:g} {t.unit}" for t in TOLERANCES.values())
         lines = [f"Key {self.key.path.name}: {len(self.key.students)} students, {len(self.key.values)} positions, "
-                 f"{len(self.key.quantities)} quantities ({len(self.marks)} answers).",
-                 f"Right when |answer − key| ≤ max({100 * self.relative:g} % of |key|, floor); floors: {rules}; "
-                 "angles modulo 360° within their floor.", ""]
+                 f"{len(self.key.quantities)} quantities ({len(self.marks)} answers).", self._rules_text(), ""]
         for student in self.key.students:
             marks = self.of(student)
             right, asked = self.score(student)
@@ -474,6 +632,19 @@ class Report:
         lines += ["", f"Class: {right} of {asked} answers right ({100 * right / asked:.0f} %)."]
         return "\n".join(lines)
 
+    def _rules_text(self) -> str:
+        """The line that says when an answer is right."""
+        defaults = {q: default_rule(q, self.relative) for q in self.key.quantities}
+        if not self.rules:
+            return (f"Right when |answer − key| ≤ the key's tolerance ({tolerances_path(self.key.path).name}, stated "
+                    "on each sheet); angles modulo 360°.")
+        floors = ", ".join(f"{t.kind} {t.floor:g} {t.unit}" for t in TOLERANCES.values())
+        text = (f"Right when |answer − key| ≤ max({100 * self.relative:g} % of |key|, floor); floors: {floors}; "
+                "angles modulo 360° within their floor.")
+        changed = [f"{q} {rule.text(TOLERANCES[kind_of(q)].unit)}" for q, rule in self.rules.items()
+                   if rule != defaults[q]]
+        return text + (" Set by --tolerance: " + "; ".join(changed) + "." if changed else "")
+
     def csv(self) -> str:
         """Every mark as CSV: student, position, phi_deg, quantity, key, answer, difference, tolerance, status, note."""
         header = ("student", "position", "phi_deg", "quantity", "key", "answer", "difference", "tolerance", "status",
@@ -482,10 +653,17 @@ class Report:
                                      m.tolerance, m.status, m.note) for m in self.marks)])
 
 
-def grade(key: Key, answers: Answers, relative: float = DEFAULT_RELATIVE) -> Report:
-    """Grade every answer the key asks for."""
-    if not (math.isfinite(relative) and 0.0 <= relative < 1.0):
+def grade(key: Key, answers: Answers, relative: float | None = None, tolerance: Sequence[str] = ()) -> Report:
+    """Grade every answer the key asks for.
+
+    The tolerances are the key's own (``key.tolerances``, from its tolerance file) unless ``relative`` or
+    ``tolerance`` (``--tolerance`` options, :func:`parse_tolerance`) is given, or the key has none: then every
+    quantity's is :func:`tolerance_rules`.
+    """
+    if relative is not None and not (math.isfinite(relative) and 0.0 <= relative < 1.0):
         raise GradingError(f"the relative tolerance must be in [0, 1): got {relative!r}")
+    own = bool(key.tolerances) and relative is None and not tolerance
+    rules = {} if own else tolerance_rules(key.quantities, tolerance, relative)
     marks = []
     for (student, position), expected in key.values.items():
         cells = answers.cells.get((student, position), {})
@@ -493,7 +671,7 @@ def grade(key: Key, answers: Answers, relative: float = DEFAULT_RELATIVE) -> Rep
         phi = key.phi[student, position]
         for quantity in key.quantities:
             value = expected[quantity]
-            tol = tolerance(quantity, value, relative)
+            tol = key.tolerances[student, position][quantity] if own else rules[quantity].of(value)
             text = cells.get(quantity, "").strip()
             if not text:
                 marks.append(Mark(student, position, phi, quantity, value, None, "missing", None, tol))
@@ -509,11 +687,11 @@ def grade(key: Key, answers: Answers, relative: float = DEFAULT_RELATIVE) -> Rep
             if status == "wrong" and kind_of(quantity) != "angle" and abs(answer + value) <= tol:
                 note = "right but for the sign"
             marks.append(Mark(student, position, phi, quantity, value, answer, status, diff, tol, note))
-    return Report(key, marks, list(answers.problems), relative)
+    return Report(key, marks, list(answers.problems), DEFAULT_RELATIVE if relative is None else relative, rules)
 
 
 def check_files(key_path: str | pathlib.Path, answer_paths: Sequence[str | pathlib.Path] | Iterable,
-                relative: float = DEFAULT_RELATIVE) -> Report:
+                relative: float | None = None, tolerance: Sequence[str] = ()) -> Report:
     """Read the key and the answer files and grade them.
 
     An answer file that cannot be read is reported among the problems (its answers count as
@@ -537,4 +715,4 @@ def check_files(key_path: str | pathlib.Path, answer_paths: Sequence[str | pathl
     if failures and len(failures) == len(paths):
         raise GradingError(failures[0] if len(failures) == 1 else
                            "no answer file could be read:\n  " + "\n  ".join(failures))
-    return grade(key, answers, relative)
+    return grade(key, answers, relative, tolerance)
