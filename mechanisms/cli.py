@@ -647,7 +647,10 @@ def _add_course_commands(commands) -> None:
         description="Grade answer files against the key written by `assign`: per student and per quantity, what is "
                     "right, what is wrong and by how much, and which answers are missing or unreadable.")
     check.add_argument("key", metavar="KEY.csv", help="the answer key written by `assign`")
-    check.add_argument("answers", metavar="ANSWERS.csv", nargs="+", help="one or more answer files")
+    check.add_argument("answers", metavar="ANSWERS.csv|SUBMISSIONS.zip", nargs="+",
+                       help="one or more answer files, or Moodle's archive of submissions (Download all "
+                            "submissions): its CSV files are read in memory, each one the answers of the account "
+                            "that handed it in (with --moodle)")
     check.add_argument("--relative", type=_cli_number, default=None, metavar="PERCENT",
                        help=f"relative tolerance in %% (default: the key's tolerances, key-tolerances.csv beside it, "
                             f"else {100 * DEFAULT_RELATIVE:g}); each kind of quantity also has an absolute floor")
@@ -655,9 +658,10 @@ def _add_course_commands(commands) -> None:
                        help="a tolerance instead of the key's, as for assign: B.vx=2%%, angle=0.5deg (repeatable)")
     check.add_argument("--marks", metavar="FILE.csv", help="also write every mark to this CSV file")
     check.add_argument("--moodle", metavar="WORKSHEET.csv",
-                       help="fill Moodle's grading worksheet (exported from the assignment) with each student's grade "
-                            "and a feedback comment, found by identifier or e-mail (the key must come from "
-                            "assign --roster); every other cell is left as it was")
+                       help="fill Moodle's grading worksheet (exported from the assignment, in any language) with each "
+                            "student's grade and a feedback comment, found by identifier or e-mail (the key must "
+                            "come from assign --roster); every other cell is left as it was. With an archive of "
+                            "submissions, it also tells which account handed in each file")
     check.add_argument("--moodle-out", metavar="FILE.csv",
                        help="where to write the filled worksheet (default: WORKSHEET-graded.csv beside it)")
     check.add_argument("--grades", metavar="FILE.csv",
@@ -704,23 +708,27 @@ def _assign(args: argparse.Namespace) -> str:
 
 
 def _check(args: argparse.Namespace) -> tuple[str, int]:
-    from .course.grading import check_files
+    from .course.grading import check_files, read_key
+    from .course.moodle import answer_files, read_worksheet
 
     if args.relative is not None and not (math.isfinite(args.relative) and 0.0 <= args.relative < 100.0):
         raise InvalidParameterError("--relative", args.relative, "a percentage from 0 to less than 100")
-    report = check_files(args.key, args.answers, relative=None if args.relative is None else args.relative / 100.0,
-                         tolerance=args.tolerance)
+    key = read_key(args.key)
+    sheet = read_worksheet(args.moodle) if args.moodle else None
+    files, problems, notes = answer_files(args.answers, key, sheet)
+    report = check_files(key, files, relative=None if args.relative is None else args.relative / 100.0,
+                         tolerance=args.tolerance, problems=problems)
     if args.marks:
         from .course.csvtext import write_file
 
         write_file(args.marks, report.csv(), "--marks file")
-    text = report.text()
-    if args.moodle:
+    text = "\n".join([report.text(), *notes])
+    if sheet is not None:
         from .course.moodle import fill_worksheet
 
         worksheet = pathlib.Path(args.moodle)
         out = args.moodle_out or worksheet.with_name(f"{worksheet.stem}-graded{worksheet.suffix or '.csv'}")
-        filled = fill_worksheet(report, worksheet, out)
+        filled = fill_worksheet(report, sheet, out)
         text += (f"\nMoodle worksheet: {len(filled.filled)} grades and feedback comments written to {filled.path}"
                  + (f" ({len(filled.untouched)} other row(s) left as they were)" if filled.untouched else "")
                  + "; upload it in the assignment: Grading action → Upload grading worksheet.")

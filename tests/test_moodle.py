@@ -24,11 +24,10 @@ from mechanisms.course.moodle import WorksheetError, fill_worksheet, grades_csv
 DATA = pathlib.Path(__file__).parent / "data" / "moodle"
 
 
-@pytest.fixture(scope="module")
-def course(tmp_path_factory) -> pathlib.Path:
-    """The class list's three students, their assignment, and answers: s01 all right, s02 one wrong, s03 none."""
-    folder = tmp_path_factory.mktemp("moodle")
-    assert main(["assign", "crank-slider", "--roster", str(DATA / "class-list.csv"), "--seed", "11", "--positions",
+def make_course(folder: pathlib.Path, roster: pathlib.Path) -> pathlib.Path:
+    """An assignment for the class list ``roster`` in ``folder/course``, and ``folder/answers.csv``: s01 all right,
+    s02 one wrong (B.v at position 1 × 1.5), the others none."""
+    assert main(["assign", "crank-slider", "--roster", str(roster), "--seed", "11", "--positions",
                  "3", "--out", str(folder / "course")]) == 0
     rows = list(csv.DictReader((folder / "course" / "key.csv").open(encoding="utf8")))
     answers = [dict(r) for r in rows if r["student"] in ("s01", "s02")]
@@ -40,6 +39,12 @@ def course(tmp_path_factory) -> pathlib.Path:
         writer.writeheader()
         writer.writerows(answers)
     return folder
+
+
+@pytest.fixture(scope="module")
+def course(tmp_path_factory) -> pathlib.Path:
+    """The class list's three students, their assignment, and answers: s01 all right, s02 one wrong, s03 none."""
+    return make_course(tmp_path_factory.mktemp("moodle"), DATA / "class-list.csv")
 
 
 def phi(folder: pathlib.Path) -> dict[str, str]:
@@ -142,8 +147,12 @@ ROWS = ['"Participant 1","Olena Kovalenko",olena.kovalenko@example.edu,x,,10.00,
 @pytest.mark.parametrize("text, message", [
     (HEADER.replace(',"Feedback comments"', "") + "".join(r[:-2] + "\n" for r in ROWS),
      "line 1: no column 'Feedback comments' (turn on the feedback type 'Feedback comments'"),
-    (HEADER.replace("Grade,", "Mark,", 1) + "".join(ROWS), "line 1: no column 'Grade'"),
-    (HEADER.replace("Identifier,", "Id,").replace('"Email address"', "Mail") + "".join(ROWS),
+    # no maximum grade beside it, and a name in no language known: nothing says which column is the grade
+    (HEADER.replace('Grade,"Maximum grade"', "Mark") + "".join(r.replace(",,10.00,", ",,") for r in ROWS),
+     "line 1: no column 'Grade'"),
+    # neither participant identifiers nor e-mail addresses in any column
+    (HEADER.replace('Identifier,"Full name","Email address"', '"Full name"')
+     + "".join(",".join(c for c in r.split(",") if "@" not in c and "Participant" not in c) for r in ROWS),
      "no column 'Identifier or Email address'"),
     (HEADER + "".join(ROWS[:2]), "no row for 1 student(s) of the key key.csv: s03 (Seán O'Brien), email "
                                  "'SEAN.OBRIEN@example.edu'"),

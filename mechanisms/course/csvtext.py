@@ -185,16 +185,20 @@ def _parse(text: str, delimiter: str, where: str, error: type[CourseFileError]) 
     return tuple(records)
 
 
-def read_csv_text(path: str | pathlib.Path, what: str, error: type[CourseFileError] = CourseFileError) -> CsvText:
+def read_csv_text(path: str | pathlib.Path, what: str, error: type[CourseFileError] = CourseFileError,
+                  data: bytes | None = None) -> CsvText:
     """Read a CSV file in any of the dialects of the module's notes.
 
     Parameters
     ----------
     path : str or path
+        The file, or the name messages give a file read from memory (a member of a zip archive).
     what : str
         What the file is, for messages (``"class list"``).
     error : type
         The error to raise (a :class:`CourseFileError`).
+    data : bytes, optional
+        The file's bytes, when they are already in memory (nothing is then read from ``path``).
 
     Raises
     ------
@@ -206,7 +210,8 @@ def read_csv_text(path: str | pathlib.Path, what: str, error: type[CourseFileErr
     path = pathlib.Path(path)
     where = f"{what} {path}"
     try:
-        data = path.read_bytes()
+        if data is None:
+            data = path.read_bytes()
     except FileNotFoundError:
         raise error(f"{where}: no such file") from None
     except OSError as failure:

@@ -41,6 +41,7 @@ __all__ = [
     "GradingError",
     "Key",
     "Answers",
+    "AnswerFile",
     "Mark",
     "Report",
     "kind_of",
@@ -320,14 +321,15 @@ _FIXED = {header_key(name): name for name in (*ID_COLUMNS, PHI, *IDENTITY_COLUMN
 ``Student``, ``STUDENT`` and `` student `` are ``student``, ``Phi deg`` is ``phi_deg``."""
 
 
-def _read_table(path: pathlib.Path, what: str) -> tuple[list[str], list[tuple[int, dict[str, str], bool]], bool]:
+def _read_table(path: pathlib.Path, what: str, data: bytes | None = None
+                ) -> tuple[list[str], list[tuple[int, dict[str, str], bool]], bool]:
     """Header, (line number, row, too many cells) triples and whether the file writes decimal commas.
 
     The file is read by :func:`mechanisms.course.csvtext.read_csv_text` (any dialect a spreadsheet writes). The
     names of the columns that are not quantities are matched whatever their case and spaces; a column without a
     name (a spreadsheet's separator at the end of every line) is left out if it is empty.
     """
-    table = read_csv_text(path, what, GradingError)
+    table = read_csv_text(path, what, GradingError, data)
     where = f"{what} {table.path}"
     first, *records = table.rows
     written = [cell.value.strip() for cell in first.cells]
@@ -465,27 +467,57 @@ def _read_tolerances(path: pathlib.Path, key: Key) -> dict[tuple[str, int], dict
 
 @dataclass
 class Answers:
-    """The cells of one or more answer files by (student, position), and the problems found."""
+    """The cells of one or more answer files by (student, position), the problems found, and notes for a
+    student's feedback (an answer file handed in by one student's account that names another)."""
 
     cells: dict[tuple[str, int], dict[str, str]] = field(default_factory=dict)
     decimal_comma: dict[tuple[str, int], bool] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
+    notes: dict[str, list[str]] = field(default_factory=dict)
 
 
-def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None) -> Answers:
-    """Read an answer file against the key; row problems go to ``Answers.problems``.
+@dataclass(frozen=True)
+class AnswerFile:
+    """An answer file in memory (a member of a learning platform's archive of submissions) and who handed it in.
+
+    Attributes
+    ----------
+    name : str
+        How messages name it (``answers.zip: Olena Kovalenko_2318104_assignsubmission_file/answers.csv``).
+    data : bytes
+        Its bytes.
+    owner : str or None
+        The key's student id of the account that handed it in, if known: its rows are that student's answers
+        (a row with an empty ``student`` cell, or a file without that column, is theirs), and a row that names
+        another student is reported, not graded.
+    account : str
+        How the account reads in messages (``Olena Kovalenko, Participant 2318104``).
+    """
+
+    name: str
+    data: bytes
+    owner: str | None = None
+    account: str = ""
+
+
+def read_answers(path: str | pathlib.Path | AnswerFile, key: Key, into: Answers | None = None) -> Answers:
+    """Read an answer file (a path, or an :class:`AnswerFile` in memory) against the key; row problems go to
+    ``Answers.problems``.
 
     Raises
     ------
     GradingError
         If the file cannot be read or its columns are not the key's (``student``, ``position``,
         optionally ``phi_deg`` and, if the key has them, ``name``, ``email``, ``identifier`` (ignored), and
-        quantities of the key, in any order).
+        quantities of the key, in any order; ``student`` may be left out of a file whose owner is known).
     """
-    path = pathlib.Path(path)
+    source = path if isinstance(path, AnswerFile) else None
+    path = pathlib.Path(path.name if isinstance(path, AnswerFile) else path)
+    name = source.name if source else path.name
+    owner = source.owner if source else None
     answers = into if into is not None else Answers()
-    header, rows, comma = _read_table(path, "answer file")
-    missing = [c for c in ID_COLUMNS if c not in header]
+    header, rows, comma = _read_table(path, "answer file", source.data if source else None)
+    missing = [c for c in ID_COLUMNS if c not in header and not (c == "student" and owner)]
     identity = IDENTITY_COLUMNS if key.people else ()      # the key's own columns, when it has a class list
     # a quantity's column whatever its case (b.S is B.s), unless the key has two names that differ only in case
     fold = str.casefold if len({q.casefold() for q in key.quantities}) == len(key.quantities) else str
@@ -503,11 +535,20 @@ def read_answers(path: str | pathlib.Path, key: Key, into: Answers | None = None
     students = key.students
     by_id = {s.casefold(): s for s in students}       # "S01" is s01
     for line, row, overflow in rows:
-        where = f"{path.name}, line {line}"
+        where = f"{name}, line {line}"
         if overflow:
-            answers.problems.append(f"{path.name}, " + _overflow(line, len(row), len(header)) + "; row ignored")
+            answers.problems.append(f"{name}, " + _overflow(line, len(row), len(header)) + "; row ignored")
             continue
-        student = by_id.get(row["student"].strip().casefold(), row["student"].strip())
+        written = row.get("student", "").strip()
+        student = by_id.get(written.casefold(), written) if written or not owner else owner
+        if owner and student != owner:
+            handed = f"handed in by {source.account or owner} ({key.label(owner)})" if source else ""
+            answers.problems.append(f"{where}: the row is for student {written!r} but the file was {handed}; "
+                                    "row not graded")
+            note = f"Your file {name.rpartition('/')[2]} has rows for student {written!r}, not {owner}: not graded."
+            if note not in answers.notes.setdefault(owner, []):
+                answers.notes[owner].append(note)
+            continue
         if student not in students:
             known = f"{students[0]} … {students[-1]}" if len(students) > 2 else ", ".join(students)
             answers.problems.append(f"{where}: unknown student id {student!r} (the key has {known}); row ignored")
@@ -579,6 +620,8 @@ class Report:
     relative: float
     rules: dict[str, Rule] = field(default_factory=dict)
     """The tolerance of each quantity, when not the key's own (``key.tolerances``)."""
+    notes: dict[str, list[str]] = field(default_factory=dict)
+    """Notes for a student's feedback (:attr:`Answers.notes`)."""
 
     def of(self, student: str) -> list[Mark]:
         return [m for m in self.marks if m.student == student]
@@ -596,10 +639,11 @@ class Report:
         for student in self.key.students:
             marks = self.of(student)
             right, asked = self.score(student)
+            notes = [f"  note       {note}" for note in self.notes.get(student, [])]
             if all(m.status == "missing" for m in marks):
-                lines.append(f"{self.key.label(student)}: no answers ({right} of {asked} right)")
+                lines += [f"{self.key.label(student)}: no answers ({right} of {asked} right)", *notes]
                 continue
-            lines.append(f"{self.key.label(student)}: {right} of {asked} right ({100 * right / asked:.0f} %)")
+            lines += [f"{self.key.label(student)}: {right} of {asked} right ({100 * right / asked:.0f} %)", *notes]
             absent = {p for p in dict.fromkeys(m.position for m in marks)
                       if all(m.status == "missing" for m in marks if m.position == p)}
             for m in marks:
@@ -687,23 +731,36 @@ def grade(key: Key, answers: Answers, relative: float | None = None, tolerance: 
             if status == "wrong" and kind_of(quantity) != "angle" and abs(answer + value) <= tol:
                 note = "right but for the sign"
             marks.append(Mark(student, position, phi, quantity, value, answer, status, diff, tol, note))
-    return Report(key, marks, list(answers.problems), DEFAULT_RELATIVE if relative is None else relative, rules)
+    return Report(key, marks, list(answers.problems), DEFAULT_RELATIVE if relative is None else relative, rules,
+                  {s: list(n) for s, n in answers.notes.items()})
 
 
-def check_files(key_path: str | pathlib.Path, answer_paths: Sequence[str | pathlib.Path] | Iterable,
-                relative: float | None = None, tolerance: Sequence[str] = ()) -> Report:
+def check_files(key_path: str | pathlib.Path | Key,
+                answer_paths: Sequence[str | pathlib.Path | AnswerFile] | Iterable,
+                relative: float | None = None, tolerance: Sequence[str] = (), problems: Sequence[str] = ()) -> Report:
     """Read the key and the answer files and grade them.
 
     An answer file that cannot be read is reported among the problems (its answers count as
     missing) and the other files are graded.
+
+    Parameters
+    ----------
+    key_path : str, path or Key
+        The key's file, or the key already read (:func:`read_key`).
+    answer_paths : paths or AnswerFile
+        The answer files: paths, or files in memory with the account that handed them in.
+    relative, tolerance
+        As for :func:`grade`.
+    problems : sequence of str
+        Problems found before (in an archive the files came from), reported first.
 
     Raises
     ------
     GradingError
         If the key cannot be read, or none of the answer files.
     """
-    key = read_key(key_path)
-    answers = Answers()
+    key = key_path if isinstance(key_path, Key) else read_key(key_path)
+    answers = Answers(problems=list(problems))
     failures = []
     paths = list(answer_paths)
     for path in paths:
