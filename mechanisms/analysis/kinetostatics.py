@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy as np
 
@@ -60,8 +60,11 @@ from ..linkages.groups import PRP, RPP, RPR, RRP, RRR, Crank, Group, Line, LinkP
 from .energy import (STANDARD_GRAVITY, Force, LinkMass, Spring, Torque, _loads, _masses, _mechanism,
                      _solution, _springs, _file_loads, _file_masses, load_values)
 
+if TYPE_CHECKING:
+    from .plans import VelocityPlan
+
 __all__ = ["JointForces", "SlidingForce", "joint_forces", "linkage_forces", "force_rows", "force_columns",
-           "force_blocks", "FORCE_UNITS"]
+           "force_blocks", "FORCE_UNITS", "ZhukovskyLever", "zhukovsky_torque"]
 
 FORCE_UNITS = {"M_d": "N·m", "Fx": "N", "Fy": "N", "N": "N", "M": "N·m"}
 """The unit of each column of :func:`force_rows`, :func:`force_columns` and :func:`force_blocks`."""
@@ -600,3 +603,115 @@ def force_blocks(row: Mapping[str, Any]) -> dict[str, dict[str, float | None]]:
     blocks |= {f"joint {name}": dict(values) for name, values in row["joints"].items()}
     blocks |= {f"sliding pair {name}": dict(values) for name, values in row["sliding"].items()}
     return blocks
+
+
+# --- Zhukovsky's lever: the balancing torque from the velocity plan turned by 90° ---------------------------
+
+@dataclass(frozen=True)
+class ZhukovskyLever:
+    """Result of :func:`zhukovsky_torque`: the velocity plan turned by 90° as a lever in equilibrium.
+
+    Attributes
+    ----------
+    torque : float
+        The balancing torque M_d on the crank (N·m, counter-clockwise positive): the driving torque
+        that holds the given forces and torques in equilibrium.
+    images : dict of complex
+        Point → its image on the turned plan, ``i v`` (m/s): the velocity turned by +90°.
+    moments : dict of float
+        Point → the moment about the pole of the force applied at its image, ``(i v) × F``
+        (N·m/s = W); it equals ``−F · v``.
+    couples : dict of float
+        Link → the moment on the lever of the torque M_j on that link, ``−M_j ω_j`` (W).
+    """
+
+    torque: float
+    images: dict[str, complex]
+    moments: dict[str, float]
+    couples: dict[str, float]
+
+
+def _plan_force(name: object, value: object) -> complex:
+    """A force of :func:`zhukovsky_torque` as a complex number (N), or the package's error naming it."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, complex, np.number)):
+        raise InvalidParameterError(f"forces[{name!r}]", value, "a force Fx + i Fy in N, a finite complex number")
+    force = complex(value)
+    if not (math.isfinite(force.real) and math.isfinite(force.imag)):
+        raise InvalidParameterError(f"forces[{name!r}]", value, "a force Fx + i Fy in N, a finite complex number")
+    return force
+
+
+def zhukovsky_torque(plan: VelocityPlan, forces: Mapping[str, complex],
+                     torques: Mapping[str, float] | None = None, crank: str = "crank") -> ZhukovskyLever:
+    """The balancing torque on the crank by Zhukovsky's lever (the velocity plan turned by 90°).
+
+    Every force ``F_k`` acting at a point K is applied, unchanged in direction, at the image of K on
+    the velocity plan turned by +90° about its pole p, that is at ``i v_K``; a torque ``M_j`` on link j
+    adds the couple ``−M_j ω_j``. The turned plan, taken as a rigid lever pivoted at p, is in
+    equilibrium under all of them and the balancing torque M_d on the crank (N. E. Zhukovsky, 1909):
+
+    ``Σ_k (i v_K) × F_k − Σ_j M_j ω_j − M_d ω₁ = 0``.
+
+    Since ``(i v) × F = −F · v``, the lever is the power balance read on the plan: with the inertia
+    forces and moments of d'Alembert among the loads, M_d is the driving torque of chapter 7.
+
+    Parameters
+    ----------
+    plan : VelocityPlan
+        A velocity plan of :func:`mechanisms.analysis.plans.velocity_plan`; the points the forces act
+        at must be on it (pass the centres of mass as its ``points``).
+    forces : mapping
+        Point of the plan → the resultant force at it, ``Fx + i Fy`` (N): loads, weights ``−i m g`` and
+        inertia forces ``−m a_S`` (add forces that act at one point).
+    torques : mapping, optional
+        Link → the torque on it (N·m, counter-clockwise positive), inertia moments ``−J_S ε`` among
+        them; a block that only translates has ω = 0 and takes none.
+    crank : str
+        The name of the crank's link on the plan (its ``rates``), ``"crank"`` by default.
+
+    Returns
+    -------
+    ZhukovskyLever
+        ``torque`` (M_d, N·m), the turned images and each force's and torque's moment on the lever.
+
+    Raises
+    ------
+    InvalidParameterError
+        A plan that is not a velocity plan, a force or torque that is not a finite number, a crank at
+        rest (ω₁ = 0: the lever does not give the torque).
+    UnknownNameError
+        A point that is not on the plan or a link it does not know (the known names listed).
+
+    Examples
+    --------
+    A crank of 1 m at φ = 90° turning at ω₁ = 1 1/s, pushed at its pin by F = −10 N along x:
+    ``v_A = −1`` m/s, the lever's moment of F is ``−F · v_A = −10`` W, so M_d = −10 N·m (the
+    frame holds the crank against F's 10 N·m).
+    """
+    if getattr(plan, "quantity", None) != "velocity" or not hasattr(plan, "points"):
+        raise InvalidParameterError("plan", type(plan).__name__, "a velocity plan (plans.velocity_plan)")
+    if not isinstance(forces, Mapping):
+        raise InvalidParameterError("forces", forces, "a mapping {point: force Fx + i Fy in N}")
+    if torques is not None and not isinstance(torques, Mapping):
+        raise InvalidParameterError("torques", torques, "a mapping {link: torque in N·m}")
+    if crank not in plan.rates:
+        raise UnknownNameError("link", crank, plan.rates)
+    omega1 = float(plan.rates[crank])
+    if omega1 == 0.0:
+        raise InvalidParameterError("plan", "a crank at rest (ω₁ = 0)", "a velocity plan of a turning crank: "
+                                    "the lever balances powers, which vanish with ω₁")
+    images: dict[str, complex] = {}
+    moments: dict[str, float] = {}
+    for point, value in forces.items():
+        if point not in plan.points:
+            raise UnknownNameError("point on the velocity plan", point, plan.points)
+        force = _plan_force(point, value)
+        images[point] = 1j * complex(plan.of(point))
+        moments[point] = float(_cross(images[point], force))
+    couples: dict[str, float] = {}
+    for link, value in (torques or {}).items():
+        if link not in plan.rates:
+            raise UnknownNameError("link on the velocity plan", link, plan.rates)
+        couples[link] = -require_finite(f"torques[{link!r}]", value) * float(plan.rates[link])
+    torque = (math.fsum(moments.values()) + math.fsum(couples.values())) / omega1
+    return ZhukovskyLever(torque, images, moments, couples)
