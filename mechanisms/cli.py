@@ -239,8 +239,10 @@ def _blocks(row: dict, group: str) -> dict:
     """A group of a row as the text table's blocks (the forces: a block each for M_d, a joint, a sliding pair)."""
     if group != "forces":
         return row[group]
+    if "forces" not in row:        # a table without --forces imports no analysis
+        return {}
     from .analysis.kinetostatics import force_blocks
-    return force_blocks(row["forces"]) if "forces" in row else {}
+    return force_blocks(row["forces"])
 
 
 _UNITS = {"angle_deg": "°", "omega": "1/s", "alpha": "1/s²", "x": "m", "y": "m", "vx": "m/s", "vy": "m/s",

@@ -234,8 +234,12 @@ def _chapter_9_round_off():
     angles = bench.reproducible_coupler_angles(root + offsets, *HALF_ANGLE_GEOMETRY, branch=-1)
     steps = bench.logspace(-2, -6, 5)
     errors = bench.step_errors(m, steps, n=24)
+    ng = mech.FourBar(crank=2.0, coupler=2.0, rocker=2.5, frame=(3.0, 0.0))   # chapter 9's non-Grashof
+    low, high = ng.assembly_intervals()[0]
+    near_ends = np.concatenate([low + bench.logspace(-9, -1, 5), high - bench.logspace(-9, -1, 5)])
+    cond = bench.reproducible_jacobian_condition(ng, near_ends)
     return [np.array([root]), offsets, angles["half-angle"], angles["stable"], steps,
-            errors["velocities"], errors["accelerations"]]
+            errors["velocities"], errors["accelerations"], cond]
 
 
 def test_chapter_9_round_off_has_the_same_bits_when_numpys_elementary_functions_differ(monkeypatch):
@@ -266,6 +270,50 @@ def test_the_nudge_changes_the_closed_forms_round_off(monkeypatch):
         nudged = np.array([c.value for c in m.coordinates(m.solve(phi, order=0))])
     assert nudged.tobytes() != plain.tobytes()
     assert np.max(np.abs(nudged - plain)) < 1e-14
+
+
+def test_the_nudge_changes_the_closed_forms_condition_number_near_a_singular_position(monkeypatch):
+    # The test above can fail for the condition number too: computed from the closed form's positions
+    # (jacobian_condition), cond near the ends of the swing moves under the nudge.
+    ng = mech.FourBar(crank=2.0, coupler=2.0, rocker=2.5, frame=(3.0, 0.0))
+    low, high = ng.assembly_intervals()[0]
+    near_ends = np.concatenate([low + bench.logspace(-9, -1, 5), high - bench.logspace(-9, -1, 5)])
+    plain = bench.jacobian_condition(ng, near_ends)
+    rng = np.random.default_rng(1)
+    with monkeypatch.context() as patch:
+        for name in NUDGED:
+            patch.setattr(np, name, _nudged(getattr(np, name), rng))
+        nudged = bench.jacobian_condition(ng, near_ends)
+    assert nudged.tobytes() != plain.tobytes()
+
+
+def test_reproducible_condition_number_is_the_exact_one():
+    mpmath = pytest.importorskip("mpmath")
+    mpmath.mp.prec = 200
+    ng = mech.FourBar(crank=2.0, coupler=2.0, rocker=2.5, frame=(3.0, 0.0))
+    low, high = ng.assembly_intervals()[0]
+    phi = np.array([low + 1e-9, 0.5 * (low + high), high - 1e-6])
+    got = bench.reproducible_jacobian_condition(ng, phi)
+    # expected: Φ_q of the four-bar by hand at the extended-precision positions, its singular values
+    # by mpmath's SVD at 200 bits. Φ = L1 e^{iφ} + L2 e^{iψ} − L3 e^{iξ} − C, q = (ψ, ξ):
+    # Φ_q = [[−L2 sin ψ, L3 sin ξ], [L2 cos ψ, −L3 cos ξ]]
+    q = bench.reproducible_reference(ng, phi).q
+    for n in range(phi.size):
+        psi, xi = (mpmath.mpf(str(v)) for v in (q[0, n], q[1, n]))
+        matrix = mpmath.matrix([[-2 * mpmath.sin(psi), 2.5 * mpmath.sin(xi)],
+                                [2 * mpmath.cos(psi), -2.5 * mpmath.cos(xi)]])
+        sigma = mpmath.svd_r(matrix, compute_uv=False)
+        expected = float(max(sigma) / min(sigma))
+        assert got[n] == pytest.approx(expected, rel=1e-12)
+    # and the singular values of a matrix with one tiny: [[1, 1], [1, 1 + δ]], σ₁σ₂ = |det| = δ,
+    # σ₁² + σ₂² = 3 + (1 + δ)² (the Frobenius norm), so σ₂ = δ/σ₁
+    delta = 2.0 ** -40                       # 1 + δ exact in double
+    from mechanisms.bench.benchmark import _singular_values_extended
+    sigma = _singular_values_extended(np.array([[[1.0, 1.0], [1.0, 1.0 + delta]]], dtype=np.longdouble))[0]
+    big = mpmath.sqrt((3 + (1 + mpmath.mpf(delta)) ** 2 + mpmath.sqrt((3 + (1 + mpmath.mpf(delta)) ** 2) ** 2
+                                                                     - 4 * mpmath.mpf(delta) ** 2)) / 2)
+    assert float(sigma[0]) == pytest.approx(float(big), rel=1e-15)
+    assert float(sigma[1]) == pytest.approx(float(mpmath.mpf(delta) / big), rel=1e-6)   # ε_ext·cond ≈ 4e-7
 
 
 def test_logspace_is_the_powers_of_ten_correctly_rounded():

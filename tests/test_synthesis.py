@@ -97,3 +97,41 @@ def test_bad_inputs():
         synthesize_coupler_output(1.0, 0.5)          # no quick return: the crank would have no length
     with pytest.raises(InvalidParameterError, match="time_ratio"):
         largest_rotatable_angle(1.0001)
+
+
+def _closed_form_time_ratio(design) -> float:
+    """K from the limit positions in closed form: crank and rocker in line, B = C + s·L₃e^{iφ}
+    (s = ±1) at distance L₂ from A = L₁e^{iφ}; |C + (sL₃ − L₁)e^{iφ}|² = L₂² gives
+    cos(φ − θ_C) = (L₂² − |C|² − (sL₃ − L₁)²) / (2(sL₃ − L₁)|C|). Of the (up to) four roots the two
+    whose B lies on the design's side of the line A → C are its limit positions."""
+    l1, l2, l3, c = design.crank, design.coupler, design.rocker, complex(*design.frame)
+    roots = []
+    for s in (1.0, -1.0):
+        k = s * l3 - l1
+        r = (l2 ** 2 - abs(c) ** 2 - k ** 2) / (2.0 * k * abs(c))
+        for sign in (1.0, -1.0):
+            phi = math.atan2(c.imag, c.real) + sign * math.acos(max(-1.0, min(1.0, r)))
+            a, b = l1 * complex(math.cos(phi), math.sin(phi)), c + s * l3 * complex(math.cos(phi), math.sin(phi))
+            if ((c - a).conjugate() * (b - a)).imag * design.branch > 0:
+                roots.append(phi % (2.0 * math.pi))
+    assert len(roots) == 2
+    stroke = abs(roots[1] - roots[0])
+    return max(stroke, 2.0 * math.pi - stroke) / min(stroke, 2.0 * math.pi - stroke)
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_limit_positions_on_grid_points_under_one_ulp_noise(seed, monkeypatch):
+    # K = 2, μ₁ = 30°: the limit positions φ = 0 and φ_x = 120° fall on grid points of the
+    # 720-point grid from −30°, where sin(φ − ξ) is ~1e-16 with a sign set by round-off. numpy's
+    # elementary functions one ulp off at random (tools/nudge_numpy.py: another processor) must
+    # not move the time ratio. Expected: K from the closed-form limit positions (by hand: φ = 0
+    # and 120°, K = 240/120 = 2).
+    from test_scene import nudged_numpy
+    design = synthesize_coupler_output(2.0, math.radians(30.0))
+    expected = _closed_form_time_ratio(design)
+    assert expected == pytest.approx(2.0, rel=1e-12)
+    for name, function in nudged_numpy(seed).items():
+        monkeypatch.setattr(np, name, function)
+    check = check_design(design, positions=720)
+    assert check.time_ratio == pytest.approx(expected, rel=1e-9)
+    assert np.degrees(check.limit_angles) == pytest.approx([0.0, 120.0], abs=1e-9)

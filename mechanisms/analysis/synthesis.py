@@ -187,11 +187,21 @@ class DesignCheck:
     minimum_angle: float
 
 
-def _refine(mechanism: FourBar, lo: np.ndarray, hi: np.ndarray, iterations: int = 60) -> np.ndarray:
-    """Bisection on g(φ) = sin(φ − ξ(φ)) (crank parallel to rocker) within brackets [lo, hi]."""
+_ROUND_OFF = 1e-12
+"""|sin(φ − ξ)| at or below which a grid crank angle is itself a limit position (round-off of
+φ − ξ is ~1e-15 rad; a root within 1e-12 rad of a grid point is found to that accuracy)."""
+
+
+def _refine(mechanism: FourBar, lo: np.ndarray, hi: np.ndarray, g_lo: np.ndarray,
+            iterations: int = 60) -> np.ndarray:
+    """Bisection on g(φ) = sin(φ − ξ(φ)) (crank parallel to rocker) within brackets [lo, hi].
+
+    ``g_lo`` are the values at ``lo`` that chose the brackets: computing them again could give
+    the other sign where g(lo) is at round-off level (a limit position on the grid), and the
+    bisection would then run to the wrong end of the bracket.
+    """
     def g(phi):
         return np.sin(phi - mechanism.solve(phi, order=0).angle("rocker").value)
-    g_lo = g(lo)
     for _ in range(iterations):
         mid = 0.5 * (lo + hi)
         g_mid = g(mid)
@@ -201,12 +211,22 @@ def _refine(mechanism: FourBar, lo: np.ndarray, hi: np.ndarray, iterations: int 
     return 0.5 * (lo + hi)
 
 
+def _limit_positions(mechanism: FourBar, phi: np.ndarray, g: np.ndarray, crossing: np.ndarray) -> np.ndarray:
+    """Crank angles where g = sin(φ − ξ) changes sign between ``phi[crossing]`` and the next grid
+    angle: a grid angle where g is at round-off level is the limit position itself (the sign of
+    g there is noise, which bracket it lands in is not), the others refined by bisection."""
+    lo, hi, g_lo, g_hi = phi[crossing], phi[crossing + 1], g[crossing], g[crossing + 1]
+    refined = _refine(mechanism, lo, hi, g_lo)
+    return np.where(np.abs(g_lo) <= _ROUND_OFF, lo, np.where(np.abs(g_hi) <= _ROUND_OFF, hi, refined))
+
+
 def check_design(design: CouplerOutputDesign, positions: int = 3600) -> DesignCheck:
     """Simulate a design over a turn of the crank and measure what it reaches.
 
     The limit positions of the coupler are found where sin(φ − ξ) changes sign on a grid of
     ``positions`` crank angles from −φ_x/4 (so that the designed position φ = 0 lies inside)
-    and refined by bisection; the time ratio is the larger crank angle between them over the
+    and refined by bisection (a grid angle where sin(φ − ξ) is at round-off level is a limit
+    position itself); the time ratio is the larger crank angle between them over the
     smaller.
     """
     mechanism = design.four_bar()
@@ -224,10 +244,10 @@ def check_design(design: CouplerOutputDesign, positions: int = 3600) -> DesignCh
     crossing = crossing[crossing < positions]   # the last grid point repeats the first
     if crossing.size != 2:
         # not a simple oscillation of the coupler: report the turning points, no time ratio
-        limits = _refine(mechanism, phi[crossing], phi[crossing + 1])
+        limits = _limit_positions(mechanism, phi, g, crossing)
         return DesignCheck(kind.name, kind.crank_rotates, bool(np.any(np.minimum(mu, math.pi - mu) < 1e-6)),
                            limits, math.nan, math.nan, math.nan, float(np.min(np.minimum(mu, math.pi - mu))))
-    limits = _refine(mechanism, phi[crossing], phi[crossing + 1])
+    limits = _limit_positions(mechanism, phi, g, crossing)
     at_limits = transmission_angle(mechanism.solve(limits, order=0))
     stroke = limits[1] - limits[0]
     ratio = max(stroke, 2.0 * math.pi - stroke) / min(stroke, 2.0 * math.pi - stroke)

@@ -54,6 +54,7 @@ __all__ = [
     "coordinate_errors",
     "jacobian_condition",
     "reproducible_reference",
+    "reproducible_jacobian_condition",
     "logspace",
     "rounded_once",
     "reproducible_coupler_angles",
@@ -602,6 +603,65 @@ def reproducible_reference(mechanism: Mechanism, phi: ArrayLike) -> Reference:
     q_t, q_tt = rates(mechanism.constraints, q, phi_ld, np.longdouble(OMEGA), np.longdouble(0.0), 2)
     assert q_t is not None and q_tt is not None   # order 2
     return Reference(q, q_t, q_tt)
+
+
+def _singular_values_extended(matrix: np.ndarray) -> np.ndarray:
+    """Singular values of the (…, k, k) matrices ``matrix`` (numpy.longdouble), largest first.
+
+    One-sided Jacobi rotations (Hestenes) of the columns in extended precision, a fixed number of
+    sweeps: only the x87 unit's arithmetic and square root, correctly rounded on every x86-64
+    processor, so the result has the same bits on every machine (LAPACK's SVD runs on the BLAS
+    library's kernels, chosen by processor). Jacobi keeps small singular values to relative
+    accuracy, which is what a condition number near a singular position needs.
+    """
+    a = np.array(matrix, dtype=np.longdouble)
+    k = a.shape[-1]
+    one = np.longdouble(1)
+    for _ in range(12):                     # quadratic convergence: ample for the k ≤ 10 of a linkage
+        for i in range(k - 1):
+            for j in range(i + 1, k):
+                x, y = a[..., :, i], a[..., :, j]
+                alpha, beta, gamma = (x * x).sum(-1), (y * y).sum(-1), (x * y).sum(-1)
+                rotate = gamma != 0
+                zeta = np.where(rotate, (beta - alpha) / np.where(rotate, 2 * gamma, one), one)
+                t = np.where(rotate, np.where(zeta >= 0, one, -one) / (np.abs(zeta) + np.sqrt(one + zeta * zeta)), 0)
+                c = one / np.sqrt(one + t * t)
+                sn = c * t
+                a[..., :, i], a[..., :, j] = (c[..., None] * x - sn[..., None] * y,
+                                              sn[..., None] * x + c[..., None] * y)
+    return -np.sort(-np.sqrt((a * a).sum(-2)), axis=-1)
+
+
+def reproducible_jacobian_condition(mechanism: Mechanism, phi: ArrayLike) -> np.ndarray:
+    """:func:`jacobian_condition` with the same bits on every machine: what a figure may plot.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A mechanism with k unknown coordinates.
+    phi : array_like
+        Crank angles φ (rad), taken as exact; regular positions (the extended-precision positions
+        of :func:`reproducible_reference` are found by Newton's method).
+
+    Returns
+    -------
+    ndarray
+        ``cond₂(Φ_q)`` at each position, double precision.
+
+    Notes
+    -----
+    Near a singular position cond₂(Φ_q) amplifies the last bits of the positions: computed from the
+    closed form, whose sines and cosines differ in their last bits from processor to processor,
+    it differs too (relatively about ε_mach · cond). Here Φ_q is evaluated at the positions of
+    :func:`reproducible_reference` in extended precision, its singular values found by Jacobi
+    rotations in extended precision, and the quotient rounded once to double.
+    """
+    phi_ld = np.atleast_1d(np.asarray(phi)).astype(np.longdouble)
+    q = reproducible_reference(mechanism, phi_ld).q
+    _, matrix = jacobian(mechanism.constraints, q, phi_ld)
+    singular_values = _singular_values_extended(matrix)
+    with np.errstate(divide="ignore"):
+        return np.asarray(singular_values[..., 0] / singular_values[..., -1], dtype=float)
 
 
 def step_errors(mechanism: Mechanism, steps: Sequence[float], n: int = 360) -> dict[str, np.ndarray]:

@@ -131,6 +131,22 @@ def vector_table(*plans: Plan, length_format: str = ".2f", magnitude_format: str
     return markdown_table(headers, rows, ["", "", magnitude_format, length_format, direction_format], align="llrrr")
 
 
+_DECIDED = 6
+"""Decimals (of a mm of the drawing, and of a score) to which every number that places something on a
+plan is rounded: positions and scores that differ only in their last bits from processor to processor
+(numpy's sines, cosines and hypot differ there) give the same drawing, and equal scores stay equal."""
+
+
+def _decided(z: complex) -> complex:
+    """A position (mm of the drawing) rounded to :data:`_DECIDED` decimals."""
+    return complex(round(z.real, _DECIDED), round(z.imag, _DECIDED))
+
+
+def _drawn(plan: Plan) -> dict[str, complex]:
+    """The plan's vertices in drawing coordinates (mm), rounded to :data:`_DECIDED` decimals."""
+    return {label: _decided(complex(plan.drawn(label))) for label in plan.vertices}
+
+
 def _arrow(ax: Axes, tail: complex, head: complex, colour: str, style: str, width: float, zorder: int = 3) -> None:
     ax.annotate("", xy=(head.real, head.imag), xytext=(tail.real, tail.imag),
                 arrowprops={"arrowstyle": "-|>", "color": colour, "lw": width, "linestyle": style,
@@ -314,8 +330,14 @@ class _Placer:
                 owner: complex | None = None) -> int:
         """How many of the candidates are nearly as good as the best, before any letter is placed."""
         half, size = self.half_size(text), text.get_fontsize()
-        scores = np.array([self.cost(c, half, size, skip, owner) + p for c, p in candidates])
+        scores = np.array([self.score(c, p, half, size, skip, owner) for c, p in candidates])
         return int(np.sum(scores <= scores.min() + 1.5))
+
+    def score(self, centre: complex, preference: float, half: tuple[float, float], size: float,
+              skip: int | None, owner: complex | None) -> float:
+        """A candidate's cost plus its preference, rounded to :data:`_DECIDED` decimals: candidates that
+        tie in exact arithmetic (symmetric places) tie here too, and the first of them wins everywhere."""
+        return round(self.cost(centre, half, size, skip, owner) + preference, _DECIDED)
 
     def place(self, text: Any, candidates: list[tuple[complex, float]], skip: int | None = None,
               optional: bool = False, owner: complex | None = None) -> None:
@@ -325,7 +347,7 @@ class _Placer:
         wherever it went is removed instead.
         """
         half, size = self.half_size(text), text.get_fontsize()
-        best, score = min(((c, self.cost(c, half, size, skip, owner) + p) for c, p in candidates),
+        best, score = min(((c, self.score(c, p, half, size, skip, owner)) for c, p in candidates),
                           key=lambda cs: cs[1])
         if optional and score >= 40.0:
             text.remove()
@@ -343,7 +365,7 @@ class _Placer:
             reach = _reach(hw, hh, u, clear)
             for extra in (0.0, 0.6, 1.2):
                 preference = 0.6 * (1.0 - (u * away.conjugate()).real) + 1.5 * extra
-                out.append((point + (reach + extra * hh) * u, preference))
+                out.append((_decided(point + (reach + extra * hh) * u), preference))
         return out
 
     def beside(self, text: Any, tail: complex, head: complex) -> list[tuple[complex, float]]:
@@ -357,13 +379,14 @@ class _Placer:
             for side in (1.0, -1.0):
                 for extra in (-0.2, 0.0, 0.2, 0.4, 0.8, 1.2, 1.6):
                     preference = 2.0 * abs(fraction - 0.5) + (0.0 if side > 0 else 0.3) + 1.5 * max(extra, 0.0)
-                    out.append((tail + fraction * (head - tail) + side * (clear + extra * hh) * normal, preference))
+                    out.append((_decided(tail + fraction * (head - tail) + side * (clear + extra * hh) * normal),
+                                preference))
         return out
 
 
 def _limits(plan: Plan, label_offset: float = 3.5) -> tuple[tuple[float, float], tuple[float, float]]:
     """The x and y limits (mm) of a plan's axes: its vertices with a margin for the letters."""
-    values = np.array([plan.drawn(label) for label in plan.vertices])
+    values = np.array(list(_drawn(plan).values()))
     span = max(np.ptp(values.real), np.ptp(values.imag), 10.0)
     margin = 0.12 * span + label_offset
     return ((values.real.min() - margin, values.real.max() + margin),
@@ -412,7 +435,7 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
     if ax is None:
         _, ax = plt.subplots(figsize=(5.0, 5.0))
     colour = VELOCITY_COLOUR if plan.quantity == "velocity" else ACCELERATION_COLOUR
-    drawn = {label: plan.drawn(label) for label in plan.vertices}
+    drawn = _drawn(plan)
     if images:
         for link, members in plan.images.items():
             corners = [drawn[plan.points[n]] for n in members]
@@ -457,11 +480,11 @@ def draw_plan(plan: Plan, ax: Axes | None = None, names: bool = True, images: bo
     corner = scale.get_window_extent().transformed(ax.transData.inverted())   # no letter on the scale
     placer.boxes.append((corner.x0 - 1.0, corner.x1 + 1.0, corner.y0 - 1.0, corner.y1 + 1.0))
     centre = complex(np.mean(values))
-    where = {tuple(group): complex(np.mean([drawn[label] for label in group])) for group in groups}
+    where = {tuple(group): _decided(complex(np.mean([drawn[label] for label in group]))) for group in groups}
 
     def crowding(group: list[str]) -> float:     # the most crowded letters choose first
         others = [abs(where[tuple(group)] - z) for g, z in where.items() if g != tuple(group)]
-        return min(others, default=np.inf)
+        return round(min(others, default=np.inf), _DECIDED)
 
     jobs: list[tuple[Any, list[tuple[complex, float]], int | None, complex | None]] = []
     # each: the text, its candidates, the index of its vector (a name), its vertex (a letter)
@@ -575,7 +598,7 @@ def _free_directions(occupied: list[complex], preferred: complex = 1j) -> list[c
     for angle in np.radians(np.arange(0.0, 360.0, 15.0)):
         u = complex(np.cos(angle), np.sin(angle))
         gap = min((abs(np.angle(u * d.conjugate())) for d in units), default=np.pi)
-        scored.append((-(gap + 0.05 * (u * preferred.conjugate()).real), angle, u))
+        scored.append((round(-(gap + 0.05 * (u * preferred.conjugate()).real), _DECIDED), angle, u))
     return [u for _, _, u in sorted(scored)]
 
 
