@@ -59,7 +59,7 @@ sources: $(STAMP)
 # (NPY_DISABLE_CPU_FEATURES: without AVX-512, baseline): stored outputs must not depend on the processor.
 # `make test` runs it too; run it before committing a notebook.
 cpu-levels: $(STAMP)
-	$(BIN)/python -m pytest tests/test_cpu_levels.py -v
+	MECHANISMS_NUDGE_SEED=$${MECHANISMS_NUDGE_SEED:-1} $(BIN)/python -m pytest tests/test_cpu_levels.py -v
 
 # Type checking of the package (configuration in pyproject.toml); `make test` runs it too.
 typecheck: $(STAMP)
