@@ -116,7 +116,8 @@ def test_two_separators_where_the_lines_decide(tmp_path):
     path.write_text("Surname, first name;Email;ID\nDoe, Ann;ann@x.org;7\n", encoding="utf-8")
     assert read_roster(path) == [Person("", "ann@x.org", "7")]
     path.write_text("Full name;Email, work;ID\nDoe, Ann;ann@x.org;7\n", encoding="utf-8")
-    assert read_roster(path) == [Person("Doe, Ann", "", "7")]
+    # ';' again; 'Email, work' is no name the list knows, but its cells are addresses, so it is the e-mail
+    assert read_roster(path) == [Person("Doe, Ann", "ann@x.org", "7")]
 
 
 # --- nothing typed becomes a formula, markup or a path -----------------------------------------------------

@@ -52,7 +52,7 @@ apostrophes: ``full_name`` and ``FULL NAME`` are ``Full name``). The Russian and
 Moodle worksheet's ``Identifier`` before an ``ID number``). A name is either one column or a first and a last
 name, joined with a space."""
 
-_PARTICIPANT = re.compile(r"\s*([^\W\d_][^\d]*?)\s*(\d{1,18})\s*")
+_PARTICIPANT = re.compile(r"\s*([^\W\d_][^\d]{2,}?)\s*(\d{1,18})\s*")
 _EMAIL = re.compile(r"\s*[^@\s,;\"<>()]+@[^@\s,;\"'<>()]+\.[^@\s,;\"'<>().]+\s*")
 
 
@@ -61,8 +61,8 @@ def participant_number(text: str) -> str | None:
 
     Moodle's grading worksheet writes ``get_string('hiddenuser', 'assign')`` and the participant's number:
     ``Participant 2318104`` in English, ``Участник2318104`` in Russian, ``Учасник2318104`` in Ukrainian (those
-    language packs have the word without the space). So an identifier is a word (letters first, no digits) and a
-    number at the end.
+    language packs have the word without the space). So an identifier is a word of three or more characters
+    (letters first, no digits) and a number at the end: a student id such as ``s01`` is not one.
     """
     match = _PARTICIPANT.fullmatch(text)
     return (match[2].lstrip("0") or "0") if match else None
