@@ -7,6 +7,7 @@ accelerations and angular rates, and the plane-motion formula v(X) = v_P + iω(X
 for the instant centres.
 """
 
+import dataclasses
 import itertools
 import math
 
@@ -249,8 +250,32 @@ def test_six_bar_centres_come_from_kennedy_and_the_rest_from_the_velocities():
             assert abs(((q - p).conjugate() * (r - p)).imag) <= 1e-9 * abs(q - p) * max(abs(r - p), 1.0)
 
 
-def test_instant_centres_refuse_a_mechanism_naming_a_link_twice():
+def test_instant_centres_of_the_shaper_class_are_those_of_its_linkage_file():
+    # the class and the shipped file describe the same machine with the same link names (block, lever,
+    # rod, ram); the file's centres are checked against the velocities in the tests above
     shaper = mech.Shaper(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22)
+    linkage = mech.load_linkage("shaper")
+    phi = np.radians([30.0])
+    ours = plans.instant_centres(shaper, shaper.solve(phi, order=1))
+    theirs = plans.instant_centres(linkage, linkage.solve(phi, order=1))
+    assert ours.links == theirs.links and len(ours.links) == 6
+    assert ours.pairs == theirs.pairs and len(ours.pairs) == 15
+    for pair in theirs.pairs:
+        assert ours.is_finite(*pair) == theirs.is_finite(*pair)
+        if theirs.is_finite(*pair):
+            assert abs(ours[pair] - theirs[pair]) <= 1e-12
+        else:
+            assert abs(ours.infinite[pair] - theirs.infinite[pair]) <= 1e-12
+
+
+def test_instant_centres_refuse_a_mechanism_naming_a_link_twice():
+    class TwoSliders(mech.Shaper):          # the block and the ram both called "slider"
+        def groups(self):
+            crank, block, end, rod = super().groups()
+            return (crank, dataclasses.replace(block, slider="slider"), end,
+                    dataclasses.replace(rod, slider="slider"))
+
+    shaper = TwoSliders(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22)
     solution = shaper.solve(np.radians([30.0]), order=0)
     with pytest.raises(InvalidParameterError, match="slider"):
         plans.instant_centres(shaper, solution)

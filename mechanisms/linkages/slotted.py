@@ -279,7 +279,8 @@ class Shaper(Mechanism):
         return cls(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22)
 
     def groups(self) -> tuple[Group, ...]:
-        return (Crank("O", "A"), RPR("A", "C", "lever"), LinkPoint("B", "lever"), RRP("D", "B", "rod", "slider", 0.0))
+        return (Crank("O", "A"), RPR("A", "C", "lever", slider="block"), LinkPoint("B", "lever"),
+                RRP("D", "B", "rod", "ram", 0.0))
 
     def __init__(self, crank: float, pivot: Sequence[float], lever: float, rod: float, ram_height: float,
                  branch: int = 1):
