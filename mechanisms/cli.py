@@ -705,7 +705,9 @@ def _assign(args: argparse.Namespace) -> str:
         f"  tolerances    {written['tolerances'][0].name}   (each answer's tolerance, as the sheets state it)",
         *([f"  linkage files {first}.toml … {last}.toml (each student's linkage, loadable by the package)"]
           if written["linkages"] else []),
-        f"  variants      {written['variants'][0].name}", *roster, *quiz,
+        f"  variants      {written['variants'][0].name}", *roster,
+        *([f"  to Moodle     {written['moodle'][0].name}   (each student's sheet, form and file, for Grading action → "
+           "Upload multiple feedback files in a zip)"] if written["moodle"] else []), *quiz,
         f"Grade with: python -m mechanisms check {written['key'][0]} ANSWERS.csv …"])
 
 

@@ -7,6 +7,7 @@ import os
 import pathlib
 import re
 import subprocess
+import zipfile
 import sys
 
 import pytest
@@ -143,7 +144,7 @@ def test_the_course_page_shows_what_the_tool_does(tmp_path):
     for name, text in files:
         (tmp_path / name).write_text(text + "\n", encoding="utf8")
     sessions = re.findall(r"```console\n\$ (.*?)\n(.*?)\n```", page, flags=re.S)
-    assert len(sessions) == 4
+    assert len(sessions) == 5
     env = dict(os.environ, PATH=os.path.dirname(sys.executable) + os.pathsep + os.environ.get("PATH", ""))
     for command, shown in sessions:
         assert command.startswith("python -m mechanisms ")
@@ -152,6 +153,21 @@ def test_the_course_page_shows_what_the_tool_does(tmp_path):
         assert result.stderr == ""
         assert matches_shortened(shown.splitlines(), result.stdout.splitlines()), \
             f"the page shows for `{command}`:\n{shown}\n\nbut the tool prints:\n{result.stdout}"
+    # the quiz's first answer box, as the page quotes it: the key's value and tolerance (to the last digits a
+    # machine's libm may change)
+    box = re.search(r"`\{1:NUMERICAL:=([-0-9.e]+):([-0-9.e]+)\}`", page)
+    key = next(csv.DictReader(open(tmp_path / "quiz" / "key.csv", encoding="utf8")))
+    tolerance = next(csv.DictReader(open(tmp_path / "quiz" / "key-tolerances.csv", encoding="utf8")))
+    assert (key["student"], key["position"]) == ("s01", "1")
+    assert float(box.group(1)) == pytest.approx(float(key["B.s"]), rel=1e-12)
+    assert float(box.group(2)) == pytest.approx(float(tolerance["B.s"]), rel=1e-12)
+    assert float(box.group(2)) == pytest.approx(0.01 * float(box.group(1)), rel=1e-12)   # 1 % of the value
+    # the sheets reach Moodle: one folder per participant of the worksheet, named as Moodle's importer reads it
+    with zipfile.ZipFile(tmp_path / "moodle" / "moodle-feedback.zip") as archive:
+        names = archive.namelist()
+    assert names == [f"s0{i}_{number}_assignfeedback_file/s0{i}{suffix}"
+                     for i, number in ((1, 2318104), (2, 2318105), (3, 2318106))
+                     for suffix in (".html", "-answers.csv")]
     # the worksheet the Moodle example writes, as the page shows it
     graded = re.search(r"```\{code-block\} text\n:caption: worksheet-graded.csv \(written by check\)\n\n(.*?)\n```",
                        page, flags=re.S).group(1)

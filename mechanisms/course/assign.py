@@ -38,6 +38,7 @@ from ..core.errors import SingularPositionWarning, InvalidParameterError, Mechan
 from ..linkages.base import Mechanism, Solution
 from ..present.escape import csv_cell, markdown_text
 from .csvtext import CourseFileError, csv_lines, write_file
+from .moodle import feedback_zip
 from .grading import TOLERANCES, Rule, default_rule, kind_of, tolerance_rules, tolerances_path
 from .roster import IDENTITY_COLUMNS, Person
 
@@ -633,7 +634,11 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     Returns
     -------
     dict
-        ``{"sheets": [...], "forms": [...], "key": [path], "variants": [path]}``.
+        ``{"sheets": [...], "forms": [...], "key": [path], "variants": [path], "linkages": [...],
+        "tolerances": [path], "moodle": [path]}``; ``moodle`` holds ``moodle-feedback.zip`` when every person is
+        a participant of Moodle's grading worksheet: each student's sheet (``.html``), answer form and linkage
+        file in the folder Moodle's *Upload multiple feedback files in a zip* gives to that participant
+        (:func:`mechanisms.course.moodle.feedback_zip`).
 
     Raises
     ------
@@ -645,7 +650,7 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     task = _task(task)
     out = pathlib.Path(out)
     written: dict[str, list[pathlib.Path]] = {"sheets": [], "forms": [], "key": [], "variants": [], "linkages": [],
-                                              "tolerances": []}
+                                              "tolerances": [], "moodle": []}
     if people is not None and len(people) != len(variants):
         raise InvalidParameterError("people", len(people), f"one person per variant ({len(variants)})")
     ids = [_require_student_id(v.student).casefold() for v in variants]
@@ -658,6 +663,7 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     except OSError as failure:
         raise CourseFileError(f"output folder {out}: cannot be made ({failure.strerror or failure})") from None
     who = dict(zip((v.student for v in variants), people or ()))
+    handout: dict[str, list[tuple[str, bytes]]] = {}     # each student's files, for Moodle's feedback zip
     columns = list(KEY_COLUMNS) + [q.column for q in task.quantities]
     rows, tolerances, words = key_and_tolerances(task, variants, tolerance, plan)
     for variant in variants:
@@ -679,6 +685,9 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
         _write_csv(form, columns, [{"student": variant.student, "position": i + 1, "phi_deg": p}
                                    for i, p in enumerate(variant.positions_deg)], "answer form")
         written["forms"].append(form)
+        handout[variant.student] = [(path.name, path.read_bytes()) for path in
+                                    (out / f"{variant.student}.html", form, out / f"{variant.student}.toml")
+                                    if path.name != f"{variant.student}.toml" or document is not None]
     key = out / "key.csv"
     if who:      # who each student is, after the id: student,name,email,identifier,position,phi_deg,…
         rows = [{"student": row["student"], **_identity(who[row["student"]])} | row for row in rows]
@@ -695,4 +704,9 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     write_file(record, json.dumps({"mechanism": task.name, "seed": seed, "variants": records}, indent=1,
                                   ensure_ascii=False) + "\n", "variants record")
     written["variants"].append(record)
+    archive = feedback_zip(handout, who)
+    if archive is not None:
+        path = out / "moodle-feedback.zip"
+        write_file(path, archive, "Moodle feedback files archive")
+        written["moodle"].append(path)
     return written

@@ -38,6 +38,13 @@ archive member with an absolute name or ``..`` stops the reading; one larger tha
 encrypted one, and one that is not a CSV file are left out with a note; so is anything past
 :data:`TOTAL_LIMIT` bytes or :data:`MEMBERS_LIMIT` members (a *zip bomb* is not unpacked).
 
+The other way, the sheets reach the students as *feedback files*: with the feedback type *Feedback files* on,
+*Grading action → Upload multiple feedback files in a zip* takes an archive of folders named
+``NAME_NUMBER_assignfeedback_file`` (``mod/assign/feedback/file/importziplib.php`` splits a folder's name at
+``_`` and takes the second part as the participant's number and the third and fourth as the plugin) and gives
+every file of a folder to that participant. :func:`feedback_zip` writes such an archive; its folders are named
+by the student ids (``s01_2318104_assignfeedback_file``), never by names.
+
 Spreadsheets open these files, so every text cell written (the student id, identifier, name, e-mail and
 feedback comment) goes through :func:`mechanisms.present.escape.csv_cell`: one that could start a formula
 (``=``, ``+``, ``-``, ``@``, a tab or a carriage return first) gets a leading ``'``. The grade is a number and is
@@ -46,6 +53,7 @@ written as one. (The feedback comments this module writes start with a digit, so
 
 from __future__ import annotations
 
+import io
 import math
 import pathlib
 import re
@@ -61,7 +69,7 @@ from .roster import Person, email_column, participant_column, participant_number
 __all__ = ["WORKSHEET_COLUMNS", "COLUMN_NAMES", "GRADES_COLUMNS", "WorksheetError", "SubmissionsError",
            "StudentGrade", "student_grades", "feedback_text", "Worksheet", "read_worksheet", "fill_worksheet",
            "WorksheetResult", "grades_csv", "Submission", "read_submissions", "answer_files", "MEMBER_LIMIT",
-           "TOTAL_LIMIT", "MEMBERS_LIMIT"]
+           "TOTAL_LIMIT", "MEMBERS_LIMIT", "feedback_zip", "FEEDBACK_FOLDER"]
 
 WORKSHEET_COLUMNS = ("Identifier", "Full name", "Email address", "Status", "Grade", "Maximum grade",
                      "Grade can be changed", "Last modified (submission)", "Online text", "Last modified (grade)",
@@ -534,3 +542,43 @@ def grades_csv(report: Report) -> str:
     rows = [(g.student, (g.person or Person()).identifier, (g.person or Person()).name, (g.person or Person()).email,
              f"{100 * g.fraction:.2f}", g.feedback) for g in student_grades(report)]
     return csv_lines([GRADES_COLUMNS, *rows])
+
+
+FEEDBACK_FOLDER = "{student}_{number}_assignfeedback_file"
+"""The folder of a student's files in :func:`feedback_zip`: Moodle's importer reads the participant's number
+after the first ``_`` and the plugin (``assignfeedback``, ``file``) after it; the first part (a student id
+here) is not used, so no name reaches the archive."""
+
+
+def feedback_zip(files: dict[str, list[tuple[str, bytes]]], people: dict[str, Person]) -> bytes | None:
+    """An archive for Moodle's *Upload multiple feedback files in a zip*: each student's files in the folder
+    of their participant number (:data:`FEEDBACK_FOLDER`).
+
+    Parameters
+    ----------
+    files : dict
+        Student id → ``[(file name, content), …]`` (names without folders, such as ``s01.html``).
+    people : dict
+        Student id → the class list's :class:`~mechanisms.course.roster.Person`.
+
+    Returns
+    -------
+    bytes or None
+        The zip archive, byte for byte the same for the same files (members in the given order, each dated
+        1980-01-01); None unless every student's identifier is a Moodle participant identifier (a class list
+        that is not Moodle's grading worksheet has no numbers to address the files to).
+    """
+    numbers = {student: participant_number(people[student].identifier) if student in people else None
+               for student in files}
+    if not files or any(number is None for number in numbers.values()):
+        return None
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
+        for student, members in files.items():
+            folder = FEEDBACK_FOLDER.format(student=student, number=numbers[student])
+            for name, content in members:
+                info = zipfile.ZipInfo(f"{folder}/{name}", date_time=(1980, 1, 1, 0, 0, 0))
+                info.compress_type = zipfile.ZIP_DEFLATED
+                info.external_attr = 0o644 << 16
+                archive.writestr(info, content)
+    return buffer.getvalue()
