@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import pathlib
 import re
 
 import numpy as np
@@ -190,3 +191,25 @@ def test_ask_chooses_the_columns_and_refuses_unknown_ones(tmp_path, capsys):
     assert list(key[0]) == ["student", "position", "phi_deg", "G.x", "G.y", "f.omega"]
     assert main(["assign", "jansen", "--students", "1", "--ask", "G.q", "--out", str(tmp_path / "x")]) == 2
     assert "G.q" in capsys.readouterr().err
+
+
+def test_force_columns_of_a_file_with_masses_agree_with_one_system_of_all_bodies(tmp_path, monkeypatch):
+    # the course project's press (masses, gravity): the key's driving torque and hinge force |F_B| against one
+    # Newton–Euler system of every body at once (tests/test_forces_any_linkage.py), solved for each student's file
+    import test_forces_any_linkage as global_system
+
+    project = str(pathlib.Path(__file__).resolve().parent.parent / "book" / "course-project.toml")
+    out, key, variants = _written(tmp_path, project, "--ask", "driving_torque,B.F,F.x")
+    assert {"driving_torque", "B.F", "F.x"} <= set(key[0])
+    for student, variant in variants.items():
+        linkage = load_linkage(out / variant["file"])
+        rows = [r for r in key if r["student"] == student]
+        phi = np.radians([float(r["phi_deg"]) for r in rows])
+        monkeypatch.setattr(global_system, "PHI", phi)
+        torque, hinges, _ = global_system.newton_euler(linkage, linkage.solve(phi, variant["omega"], 0.0))
+        at_b = [force for (joint, _, _), force in hinges.items() if joint == "B"]
+        assert len(at_b) == 1
+        scale = np.abs(at_b[0]).max()
+        assert [float(r["B.F"]) for r in rows] == pytest.approx(np.abs(at_b[0]), rel=1e-9, abs=1e-9 * scale)
+        assert [float(r["driving_torque"]) for r in rows] == pytest.approx(torque, rel=1e-9,
+                                                                           abs=1e-9 * np.abs(torque).max())
