@@ -507,7 +507,98 @@ def build_parser() -> argparse.ArgumentParser:
     plan.add_argument("--format", choices=("text", "json"), default="text")
     _add_course_commands(commands)
     _add_bench_command(commands)
+    _add_synthesize_command(commands)
     return parser
+
+
+def _add_synthesize_command(commands) -> None:
+    """The subcommand ``synthesize path``: a four-bar whose coupler point traces a target path."""
+    synthesize = commands.add_parser("synthesize", help="design a linkage for a task: synthesize path TARGET.csv",
+                                     description="Design a linkage for a task.")
+    tasks = synthesize.add_subparsers(dest="task", metavar="TASK")
+    path = tasks.add_parser(
+        "path", help="a four-bar whose coupler point P traces a target path (x,y in m)",
+        description="Fit a four-bar's coupler point P to the path in TARGET.csv (header x,y; x and y in m, one point "
+                    "a row, in order; a closed curve unless --open) and write the linkage file. It prints the RMS and "
+                    "largest distance from the target to P's path as a percentage of the target's size (the "
+                    "diagonal of its bounding box), the Grashof class and the transmission angles. A fit whose RMS "
+                    "distance is above --tolerance is reported, no file is written, and the exit status is 1.")
+    path.add_argument("target", metavar="TARGET.csv", help="the target path: header x,y, then x,y in m per row")
+    path.add_argument("--out", required=True, metavar="LINKAGE.toml", help="the linkage file to write")
+    path.add_argument("--open", action="store_true", help="the target is an open stretch, not a closed curve")
+    path.add_argument("--fixed-pivots", dest="fixed_pivots", default=None, metavar="X1,Y1,X2,Y2",
+                      help="the crank's pivot O = (X1, Y1) and the rocker's pivot C = (X2, Y2), m")
+    path.add_argument("--crank-rocker", dest="crank_rocker", action="store_true",
+                      help="only crank-rockers (default: also double-cranks; the crank turns fully either way)")
+    path.add_argument("--min-transmission", dest="min_transmission", type=_cli_number, default=None, metavar="DEG",
+                      help="the smallest transmission angle allowed over the turn, degrees (0 to 90)")
+    path.add_argument("--tolerance", type=_cli_number, default=1.0, metavar="PERCENT",
+                      help="the largest RMS distance accepted, percent of the target's size (default 1)")
+
+
+def _read_target(path: str) -> np.ndarray:
+    """The points (n, 2) of a target file: header ``x,y``, then two numbers (m) a row; or a
+    :class:`~mechanisms.course.csvtext.CourseFileError` naming the file, the line and the cause."""
+    from .course.csvtext import CourseFileError, header_key, read_csv_text
+
+    where = f"target path {path}"
+    rows = read_csv_text(path, "target path").rows
+    header = [header_key(cell.value) for cell in rows[0].cells]
+    if header != ["x", "y"]:
+        raise CourseFileError(f"{where}, line {rows[0].line}: the first line must be the header x,y (got "
+                              f"{','.join(cell.value for cell in rows[0].cells)!r})")
+    points = []
+    for row in rows[1:]:
+        if len(row.cells) != 2:
+            raise CourseFileError(f"{where}, line {row.line}: expected two numbers x,y (m), got {len(row.cells)} "
+                                  "cells")
+        values = []
+        for axis, cell in zip("xy", row.cells):
+            try:
+                value = parse_number(cell.value)
+            except ValueError:
+                raise CourseFileError(f"{where}, line {row.line}: {axis} is not a number: {cell.value!r}"
+                                      f"{_number_hint(cell.value)}") from None
+            if not math.isfinite(value):
+                raise CourseFileError(f"{where}, line {row.line}: {axis} must be a finite number of metres, got "
+                                      f"{cell.value!r}")
+            values.append(value)
+        points.append(values)
+    return np.array(points, dtype=float).reshape(-1, 2)
+
+
+def _synthesize(args: argparse.Namespace) -> tuple[str, int]:
+    """``synthesize path TARGET.csv --out LINKAGE.toml``: the fit's report, and exit status 1 for a poor fit."""
+    from .analysis.path_synthesis import fit_path, fit_report
+    from .course.csvtext import write_file
+
+    pivots = None
+    if args.fixed_pivots is not None:
+        try:
+            x1, y1, x2, y2 = (parse_number(v) for v in args.fixed_pivots.split(","))
+        except ValueError:
+            raise InvalidParameterError("--fixed-pivots", args.fixed_pivots,
+                                        "four numbers X1,Y1,X2,Y2 (m): the crank's pivot and the rocker's") from None
+        if not all(map(math.isfinite, (x1, y1, x2, y2))) or (x1, y1) == (x2, y2):
+            raise InvalidParameterError("--fixed-pivots", args.fixed_pivots, "two distinct points of finite "
+                                        "coordinates X1,Y1,X2,Y2 (m)")
+        pivots = (complex(x1, y1), complex(x2, y2))
+    if args.min_transmission is not None and not 0.0 <= args.min_transmission < 90.0:
+        raise InvalidParameterError("--min-transmission", args.min_transmission, "an angle from 0° to below 90°")
+    if not 0.0 < args.tolerance <= 100.0:
+        raise InvalidParameterError("--tolerance", args.tolerance, "a percentage above 0 and at most 100")
+    points = _read_target(args.target)
+    fit = fit_path(points, closed=not args.open, pivots=pivots, crank_rocker=args.crank_rocker,
+                   min_transmission=None if args.min_transmission is None else math.radians(args.min_transmission),
+                   tolerance=args.tolerance / 100.0, name=f"target path {args.target}")
+    kind = "an open stretch" if args.open else "a closed curve"
+    lines = [f"target path {args.target}: {len(points)} points, {kind}"] + fit_report(fit)
+    if not fit.good:
+        lines.append(f"no linkage file written ({args.out})")
+        return "\n".join(lines), 1
+    write_file(args.out, fit.linkage_text(), "linkage file")
+    lines.append(f"linkage file written: {args.out} (the coupler point is the [[point]] named P)")
+    return "\n".join(lines), 0
 
 
 def _add_table_options(sub: argparse.ArgumentParser) -> None:
@@ -873,6 +964,17 @@ def _main(argv: Sequence[str] | None, out: _Output) -> int:
             return 2
         out.write(text + "\n")
         return 0
+    if args.command == "synthesize":
+        if args.task is None:
+            _error("name a task: path (see `synthesize --help`)")
+            return 2
+        try:
+            text, status = _synthesize(args)
+        except MechanismError as error:
+            _error(str(error))
+            return 2
+        out.write(text + "\n")
+        return status
     if args.command in ("assign", "check"):
         try:
             if args.command == "assign":

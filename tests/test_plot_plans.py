@@ -79,7 +79,7 @@ def test_slotted_lever_plan_draws_the_coriolis_component():
     sol = m.solve(np.radians([64.0]), omega=10.0)
     ax = plot_plans.draw_plan(plans.acceleration_plan(m, sol))
     texts = [t.get_text() for t in ax.texts]
-    assert "$a^{k}_{A_{3}A_{2}}$" in texts and "$k$" in texts and "$a_{3}'$" in texts
+    assert "$a^{k}_{A_{2}A_{3}}$" in texts and "$k$" in texts and "$a_{3}'$" in texts
 
 
 def test_letters_in_the_book_s_notation():
@@ -419,7 +419,7 @@ def test_short_components_are_named_as_long_ones():
     # (about 7 mm) carry their names, as the crank-slider's a′n2 and the slotted lever's a′k do
     cases = [(mech.FourBar(0.1, 0.35, 0.3, (0.4, 0.05)), 60.0, "$a^{n}_{BA}$", (9.5, 9.2)),
              (mech.Shaper(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22), 330.0,
-              "$a^{k}_{A_{3}A_{2}}$", (9.5, 10.0))]
+              "$a^{k}_{A_{2}A_{3}}$", (9.5, 10.0))]
     for m, phi, name, size in cases:
         sol = m.solve(np.radians([phi]), omega=10.0)
         v = plans.velocity_plan(m, sol)

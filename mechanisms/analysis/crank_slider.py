@@ -2,7 +2,8 @@
 
 The transmission angle, the two dead-centre
 positions and the stroke, the time ratio of the offset mechanism, the extreme velocities and
-accelerations of the slider, and the approximate (series) slider formula of the textbooks.
+accelerations of the slider, the approximate (series) slider formula of the textbooks, and the
+velocity and acceleration analogues (derivatives with respect to the crank angle).
 """
 
 from __future__ import annotations
@@ -35,6 +36,8 @@ __all__ = [
     "SliderExtremes",
     "slider_extremes",
     "approximate_slider",
+    "Analogues",
+    "analogues",
 ]
 
 
@@ -307,6 +310,59 @@ def approximate_slider(mechanism: CrankSlider, phi: ArrayLike, omega: float = 1.
     v = -omega * l1 * (np.sin(phi) + b * np.cos(phi) * h / l2)
     a = -omega**2 * l1 * (np.cos(phi) + b * (l1 * np.cos(2.0 * phi) + e * np.sin(phi)) / l2)
     return Motion(s, v, a)
+
+
+@dataclass(frozen=True)
+class Analogues:
+    """Velocity and acceleration analogues of the crank-slider: derivatives with respect to φ.
+
+    Attributes
+    ----------
+    psi_1, psi_2 : numpy.ndarray
+        ψ′ = dψ/dφ (dimensionless) and ψ″ = d²ψ/dφ² (1/rad), the coupler's analogues.
+    s_1, s_2 : numpy.ndarray
+        s′ = ds/dφ and s″ = d²s/dφ² (m/rad, m/rad²), the slider's analogues.
+
+    Notes
+    -----
+    They depend on the geometry and φ only. At any crank speed ω = φ_t and acceleration ε = φ_tt,
+    ``ψ_t = ω ψ′``, ``ψ_tt = ε ψ′ + ω² ψ″`` and likewise ``s_t = ω s′``, ``s_tt = ε s′ + ω² s″``.
+    """
+
+    psi_1: np.ndarray
+    psi_2: np.ndarray
+    s_1: np.ndarray
+    s_2: np.ndarray
+
+
+def analogues(mechanism: CrankSlider, phi: ArrayLike) -> Analogues:
+    """The velocity and acceleration analogues ψ′, ψ″, s′, s″ at the crank angles φ.
+
+    Parameters
+    ----------
+    mechanism : CrankSlider
+    phi : array_like
+        Crank angles φ (rad).
+
+    Returns
+    -------
+    Analogues
+        ``ψ′ = −L1 cos φ / (L2 cos ψ)``, ``ψ″ = (L1 sin φ + L2 sin ψ ψ′²) / (L2 cos ψ)``,
+        ``s′ = −L1 sin φ − L2 sin ψ ψ′``, ``s″ = −L1 cos φ − L2 (cos ψ ψ′² + sin ψ ψ″)``: the closed
+        form of chapter 3 at the unit crank speed φ_t = 1 1/s and φ_tt = 0, where the time
+        derivatives equal the derivatives with respect to φ.
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming ``phi`` if it is not finite.
+    AssemblyError
+        Naming the crank angles at which the mechanism cannot be assembled.
+    """
+    phi = require_finite_array("phi", phi, "crank angles in rad")
+    sol = mechanism.solve(phi, 1.0, 0.0, order=2)
+    coupler, slider = sol.angle("coupler"), sol.slider("B")
+    return Analogues(coupler.omega, coupler.alpha, slider.velocity, slider.acceleration)
 
 
 # --- the crank-slider's assignment (python -m mechanisms assign crank-slider) ------------------------------------------------------------------------------------

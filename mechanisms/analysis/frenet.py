@@ -1,30 +1,34 @@
 """The Frenet-frame method (Pylypaka and Chepizhnyi, 2019), chapter 8.
 
+Notation: the book's (chapter 8's table of letters). The crank angle is φ (the source's ψ); the angle
+of the driven link from the tangent is ϑ (the source's φ), whose values and derivatives the fields
+``phi``, ``phi_s``, ``phi_ss`` of :class:`RotationLaw` hold under the source's letter.
+
 A driven link hinged to the crank pin A is seen from a moving frame whose origin is A: the
 Frenet frame of the crank-pin circle (radius r, curvature k = 1/r). Its unit tangent τ points
 along the pin's velocity for a counter-clockwise crank, its principal normal n = iτ towards the
-centre O. With the crank angle ψ = ks measured from +x (s is the arc length of the pin's path),
+centre O. With the crank angle φ = ks measured from +x (s is the arc length of the pin's path),
 
-    A = O + r·exp(iψ),    τ = i·exp(iψ),    θ_τ = ψ + π/2   (the tangent's angle from +x; the source's α).
+    A = O + r·exp(iφ),    τ = i·exp(iφ),    θ_τ = φ + π/2   (the tangent's angle from +x; the source's α).
 
-The driven link makes the angle φ with τ; the source's γ is defined by the link's direction
-θ_AB = π − γ from +x, so that φ = θ_AB − θ_τ = π/2 − γ − ks (the source's relation (1)). A point of
+The driven link makes the angle ϑ with τ; the source's γ is defined by the link's direction
+θ_AB = π − γ from +x, so that ϑ = θ_AB − θ_τ = π/2 − γ − ks (the source's relation (1)). A point of
 the link at the distance ρ from A (negative: on the other side of A) is
 
-    R(s) = A + ρ·exp(i(θ_τ + φ)) = A + ρ(cos φ·τ + sin φ·n),
+    R(s) = A + ρ·exp(i(θ_τ + ϑ)) = A + ρ(cos ϑ·τ + sin ϑ·n),
 
 and with the Frenet formulas τ' = k n, n' = −k τ (a prime is d/ds):
 
-    R'  = [1 − ρ(k + φ') sin φ] τ + ρ(k + φ') cos φ · n,
-    R'' = −[ρ φ'' sin φ + ρ(k + φ')² cos φ] τ + [ρ φ'' cos φ − ρ(k + φ')² sin φ + k] n.
+    R'  = [1 − ρ(k + ϑ') sin ϑ] τ + ρ(k + ϑ') cos ϑ · n,
+    R'' = −[ρ ϑ'' sin ϑ + ρ(k + ϑ')² cos ϑ] τ + [ρ ϑ'' cos ϑ − ρ(k + ϑ')² sin ϑ + k] n.
 
 The velocity is ṡ R' and the acceleration s̈ R' + ṡ² R'', with ṡ = ωr and s̈ = εr (crank
 angular velocity ω and acceleration ε). For a constant ω these are the source's (3) and (4);
 its (11) turns the frame components to the fixed axes.
 
-The source derives φ' and φ'' symbolically for each mechanism. Here they come from the
+The source derives ϑ' and ϑ'' symbolically for each mechanism. Here they come from the
 mechanism's solution instead, which already holds the driven link's angle θ with its exact time
-derivatives: θ' = θ_t/ṡ, θ'' = (θ_tt − θ' s̈)/ṡ², and φ' = θ' − k, φ'' = θ''. No symbolic
+derivatives: θ' = θ_t/ṡ, θ'' = (θ_tt − θ' s̈)/ṡ², and ϑ' = θ' − k, ϑ'' = θ''. No symbolic
 differentiation is needed, so the method works for every mechanism whose driven link is hinged
 to the crank (the lambda mechanism included, for which the source stopped at the trajectories).
 
@@ -32,7 +36,7 @@ Notes
 -----
 The source's trajectory formula (2) and projection (11) place the pin at r(sin ks, −cos ks),
 i.e. they measure s from the lowest point of the circle, while its problems measure the crank
-angle ks from +x; used together the pictures turn by −90°. This module measures ψ = ks from +x
+angle ks from +x; used together the pictures turn by −90°. This module measures φ = ks from +x
 throughout: see the book's errata page.
 """
 
@@ -66,18 +70,18 @@ def _wrap(angle: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class RotationLaw:
-    """The law of rotation φ(s) of a driven link in the Frenet frame of the crank-pin circle.
+    """The law of rotation ϑ(s) of a driven link in the Frenet frame of the crank-pin circle.
 
     Attributes
     ----------
     s : ndarray
-        Arc length of the crank pin's path, s = rψ (m), ψ the crank angle from +x.
+        Arc length of the crank pin's path, s = rφ (m), φ the crank angle from +x.
     curvature : float
         k = 1/r (1/m), the curvature of the crank-pin circle.
     phi : ndarray
-        φ (rad): the angle from the tangent τ to the driven link, in (−π, π].
+        ϑ (rad): the angle from the tangent τ to the driven link, in (−π, π].
     phi_s, phi_ss : ndarray or None
-        φ' = dφ/ds (rad/m) and φ'' = d²φ/ds² (rad/m²); ``None`` if not computed.
+        ϑ' = dϑ/ds (rad/m) and ϑ'' = d²ϑ/ds² (rad/m²); ``None`` if not computed.
     s_t, s_tt : ndarray or None
         ṡ = ωr (m/s) and s̈ = εr (m/s²), the pin's speed along its path and its rate.
     centre : complex
@@ -104,7 +108,7 @@ class RotationLaw:
 
     @property
     def order(self) -> int:
-        """0, 1 or 2: how many derivatives of φ are known."""
+        """0, 1 or 2: how many derivatives of ϑ are known."""
         if self.phi_s is None:
             return 0
         return 1 if self.phi_ss is None else 2
@@ -116,17 +120,17 @@ class RotationLaw:
 
     @property
     def crank_angle(self) -> np.ndarray:
-        """ψ = ks, the crank angle from +x (rad)."""
+        """φ = ks, the crank angle from +x (rad)."""
         return self.curvature * self.s
 
     @property
     def tangent_angle(self) -> np.ndarray:
-        """α = ψ + π/2, the angle of the tangent τ from +x (rad)."""
+        """θ_τ = φ + π/2, the angle of the tangent τ from +x (rad; the source's α)."""
         return self.crank_angle + 0.5 * np.pi
 
     @property
     def gamma(self) -> np.ndarray:
-        """The source's γ = π/2 − φ − ks, in (−π, π]: the driven link's direction is π − γ."""
+        """The source's γ = π/2 − ϑ − ks, in (−π, π]: the driven link's direction is π − γ."""
         return _wrap(0.5 * np.pi - self.phi - self.crank_angle)
 
     def _require(self, order: int, what: str) -> None:
@@ -137,8 +141,8 @@ class RotationLaw:
     def position(self, rho: float) -> np.ndarray:
         """The point at distance ρ from the crank pin along the driven link, ``x + iy`` (m).
 
-        ``R = O + r·exp(iψ) + ρ·exp(i(θ_τ + φ))``; in coordinates
-        ``x = r cos ks − ρ sin(φ + ks)``, ``y = r sin ks + ρ cos(φ + ks)`` (O at the origin).
+        ``R = O + r·exp(iφ) + ρ·exp(i(θ_τ + ϑ))``; in coordinates
+        ``x = r cos ks − ρ sin(ϑ + ks)``, ``y = r sin ks + ρ cos(ϑ + ks)`` (O at the origin).
         """
         psi = self.crank_angle
         return self.centre + self.radius * np.exp(1j * psi) + rho * np.exp(1j * (psi + 0.5 * np.pi + self.phi))
@@ -146,7 +150,7 @@ class RotationLaw:
     def frame_velocity(self, rho: float) -> tuple[np.ndarray, np.ndarray]:
         """The velocity's components on τ and n: ``(V_τ, V_n)`` (m/s), the source's (3).
 
-        ``V_τ = ṡ[1 − ρ(k + φ') sin φ]``, ``V_n = ṡ ρ(k + φ') cos φ`` with ṡ = ωr.
+        ``V_τ = ṡ[1 − ρ(k + ϑ') sin ϑ]``, ``V_n = ṡ ρ(k + ϑ') cos ϑ`` with ṡ = ωr.
         """
         self._require(1, "velocities")
         assert self.phi_s is not None   # checked by _require
@@ -158,8 +162,8 @@ class RotationLaw:
         """The acceleration's components on τ and n: ``(W_τ, W_n)`` (m/s²).
 
         ``W = s̈ R' + ṡ² R''``; for a constant crank speed (s̈ = 0) the source's (4):
-        ``W_τ = −ṡ²[ρφ'' sin φ + ρ(k + φ')² cos φ]``,
-        ``W_n = ṡ²[ρφ'' cos φ − ρ(k + φ')² sin φ + k]``.
+        ``W_τ = −ṡ²[ρϑ'' sin ϑ + ρ(k + ϑ')² cos ϑ]``,
+        ``W_n = ṡ²[ρϑ'' cos ϑ − ρ(k + ϑ')² sin ϑ + k]``.
         """
         self._require(2, "accelerations")
         assert self.s_t is not None and self.s_tt is not None   # checked by _require
@@ -204,7 +208,7 @@ def law_from_angles(crank: AngleMotion, link: AngleMotion, radius: float, centre
     Parameters
     ----------
     crank : AngleMotion
-        The crank angle ψ (rad, from +x) with ω = ψ_t (1/s) and ε = ψ_tt (1/s²).
+        The crank angle φ (rad, from +x) with ω = φ_t (1/s) and ε = φ_tt (1/s²).
     link : AngleMotion
         The driven link's angle θ (rad, from +x, from the crank pin along the link) with θ_t and
         θ_tt, e.g. from a mechanism's solution or from the generic solver.
@@ -222,8 +226,8 @@ def law_from_angles(crank: AngleMotion, link: AngleMotion, radius: float, centre
 
     Notes
     -----
-    ``s = rψ``, ``φ = θ − ψ − π/2``, ``ṡ = rω``, ``s̈ = rε``;
-    ``φ' = θ_t/ṡ − k`` and ``φ'' = (θ_tt − (φ' + k) s̈)/ṡ²`` from the chain rule
+    ``s = rφ``, ``ϑ = θ − φ − π/2``, ``ṡ = rω``, ``s̈ = rε``;
+    ``ϑ' = θ_t/ṡ − k`` and ``ϑ'' = (θ_tt − (ϑ' + k) s̈)/ṡ²`` from the chain rule
     ``θ_t = θ' ṡ``, ``θ_tt = θ'' ṡ² + θ' s̈`` (chapter 8). The crank must turn (ω ≠ 0) wherever
     derivatives are asked for: s is the independent variable.
     """
@@ -283,18 +287,18 @@ def driven_link(mechanism: Mechanism, pin: str = "A") -> str:
 
 def rotation_law(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alpha: float = 0.0, order: int = 2,
                  link: str | None = None, solution: Solution | None = None) -> RotationLaw:
-    """Solve a mechanism and return the law of rotation φ(s) of its driven link.
+    """Solve a mechanism and return the law of rotation ϑ(s) of its driven link.
 
     Parameters
     ----------
     mechanism : Mechanism
         Any mechanism of the package whose driven link is hinged to the crank pin A.
     phi : array_like
-        Crank angles ψ (rad) (the book's φ; the source writes ψ = ks).
+        Crank angles φ (rad) (the source writes ψ = ks).
     omega, alpha : float
         Crank angular velocity ω (1/s, non-zero) and acceleration ε (1/s²).
     order : int
-        0: φ only; 1: also φ'; 2: also φ''.
+        0: ϑ only; 1: also ϑ'; 2: also ϑ''.
     link : str, optional
         The driven link; by default :func:`driven_link`.
     solution : Solution, optional
@@ -319,12 +323,12 @@ def rotation_law(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alpha
 
 def crank_slider_law(s: ArrayLike, curvature: float, rod: float, offset: float = 0.0,
                      branch: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """φ, φ', φ'' of the coupler of a crank-slider in closed form.
+    """ϑ, ϑ', ϑ'' of the coupler of a crank-slider in closed form.
 
     Parameters
     ----------
     s : array_like
-        Arc length of the crank pin (m), s = rψ.
+        Arc length of the crank pin (m), s = rφ.
     curvature : float
         k = 1/r (1/m).
     rod : float
@@ -338,13 +342,13 @@ def crank_slider_law(s: ArrayLike, curvature: float, rod: float, offset: float =
     Returns
     -------
     phi, phi_s, phi_ss : ndarray
-        φ (rad, in (−π, π]), φ' (rad/m), φ'' (rad/m²).
+        ϑ (rad, in (−π, π]), ϑ' (rad/m), ϑ'' (rad/m²).
 
     Notes
     -----
     With h = e − r sin ks (the guide's height above the pin) and w = √(L² − h²):
     θ = atan2(h, b·w), θ' = −b cos ks / w, θ'' = b (k sin ks · w² + h cos² ks) / w³,
-    φ = θ − ks − π/2, φ' = θ' − k, φ'' = θ''. For b = −1, e = −e_source these are the source's
+    ϑ = θ − ks − π/2, ϑ' = θ' − k, ϑ'' = θ''. For b = −1, e = −e_source these are the source's
     (8), (9), (10) (chapter 8). Unbounded where w = 0 (the rod perpendicular to the guide).
     """
     k = require_length("curvature", curvature)
@@ -368,28 +372,28 @@ def crank_slider_law(s: ArrayLike, curvature: float, rod: float, offset: float =
 
 def rocker_in_block_law(s: ArrayLike, curvature: float,
                         pivot: tuple[float, float] = (0.0, 1.0)) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """φ, φ', φ'' of a rocker hinged to the crank pin and sliding through a block at a fixed pivot.
+    """ϑ, ϑ', ϑ'' of a rocker hinged to the crank pin and sliding through a block at a fixed pivot.
 
     Parameters
     ----------
     s : array_like
-        Arc length of the crank pin (m), s = rψ.
+        Arc length of the crank pin (m), s = rφ.
     curvature : float
         k = 1/r (1/m).
     pivot : tuple of float
-        The block's pivot B = (x_B, y_B) (m); the source's problem 3 has B = (0, d).
+        The block's pivot C = (x_C, y_C) (m); the source's problem 3 has it at (0, d) (and calls it B).
 
     Returns
     -------
     phi, phi_s, phi_ss : ndarray
-        φ (rad, in (−π, π]), φ' (rad/m), φ'' (rad/m²).
+        ϑ (rad, in (−π, π]), ϑ' (rad/m), ϑ'' (rad/m²).
 
     Notes
     -----
-    The rocker points from A to B: with X = a − r cos ks, Y = b − r sin ks and Q = X² + Y²,
+    The rocker points from A to C: with X = x_C − r cos ks, Y = y_C − r sin ks and Q = X² + Y² (= R²),
     θ = atan2(Y, X), θ' = −(X cos ks + Y sin ks)/Q, θ'' = (X sin ks − Y cos ks)(kQ + 2(X cos ks
-    + Y sin ks))/Q². For B = (0, d) they reduce to φ' = k²d(sin ks − kd)/(1 + k²d² − 2kd sin ks)
-    and φ'' = dk³(1 − k²d²) cos ks/(1 + k²d² − 2kd sin ks)², the corrected (15), (16) of the
+    + Y sin ks))/Q². For C = (0, d) they reduce to ϑ' = k²d(sin ks − kd)/(1 + k²d² − 2kd sin ks)
+    and ϑ'' = dk³(1 − k²d²) cos ks/(1 + k²d² − 2kd sin ks)², the corrected (15), (16) of the
     source (chapter 8). Undefined where the block is at the pin (Q = 0).
     """
     k = require_length("curvature", curvature)
@@ -411,7 +415,7 @@ def lambda_mechanism_gamma(psi: ArrayLike, crank: float, half_coupler: float, gr
     Parameters
     ----------
     psi : array_like
-        Crank angle ψ = ks (rad).
+        Crank angle φ = ks (rad).
     crank, half_coupler, ground : float
         r, b, d (m), as in :class:`~mechanisms.LambdaMechanism`.
 
@@ -422,10 +426,11 @@ def lambda_mechanism_gamma(psi: ArrayLike, crank: float, half_coupler: float, gr
 
     Notes
     -----
-    With A = r² + d² + 2rd cos ψ (the squared distance between the pin and the rocker pivot),
-    ``cos γ = [d³ + r(r² + 3d²) cos ψ + r²d(2 + cos 2ψ) + r sin ψ √(A(4b² − A))] / (2bA)``:
-    the point C is the intersection of the circles of radius b about A and about D = (−d, 0)
-    on the left of D→A. Being an arccosine, it holds only while C is above A (sin γ ≥ 0).
+    With R² = r² + d² + 2rd cos φ (the squared distance between the pin and the rocker pivot; the
+    source's A), ``cos γ = [d³ + r(r² + 3d²) cos φ + r²d(2 + cos 2φ) + r sin φ √(R²(4b² − R²))] / (2bR²)``:
+    the joint B (the source's C) is the intersection of the circles of radius b about A and about the
+    pivot C = (−d, 0) (the source's D) on the left of C→A. Being an arccosine, it holds only while
+    B is above A (sin γ ≥ 0).
     """
     r = require_length("crank", crank)
     b = require_length("half_coupler", half_coupler)

@@ -61,6 +61,8 @@ __all__ = [
     "nice_scale",
     "velocity_plan",
     "acceleration_plan",
+    "PlanStep",
+    "plan_steps",
     "InstantCentres",
     "instant_centres",
     "instant_centre_path",
@@ -190,7 +192,7 @@ class PlanVector:
     Attributes
     ----------
     name : str
-        Its symbol in the book's lettering: ``v_A``, ``v_BA``, ``a^n_BA``, ``a^k_A3A2`` …
+        Its symbol in the book's lettering: ``v_A``, ``v_BA``, ``a^n_BA``, ``a^k_A2A3`` …
     tail, head : str
         Labels of the plan vertices it joins (``p``, ``a``, ``b`` …; ``π``, ``a′``, ``n2`` …).
     kind : str
@@ -200,6 +202,10 @@ class PlanVector:
         The link whose motion the vector describes (``crank``, ``coupler`` …), for its colour.
     value : complex
         The vector as the construction found it (m/s or m/s²).
+    line : complex
+        The unit direction of the line the construction drew for the vector before it knew its
+        length (perpendicular to a link, along a guide or a slot); 0 for a vector known whole
+        (the crank pin's, a normal or a Coriolis component, a point found by its image).
     """
 
     name: str
@@ -208,6 +214,7 @@ class PlanVector:
     kind: str
     link: str
     value: complex
+    line: complex = 0j
 
     @property
     def latex(self) -> str:
@@ -322,7 +329,7 @@ class Plan:
         Parameters
         ----------
         name : str
-            A vector's name (``v_A3A2``, ``a^k_A3A2``) or a mechanism point's name.
+            A vector's name (``v_A2A3``, ``a^k_A2A3``) or a mechanism point's name.
         along : complex
             The direction, any length but not zero (e.g. ``A − C``, along the slot from C to A,
             or ``1j * (A − C)``, across it).
@@ -562,13 +569,17 @@ class _Builder:
             self.points[point] = label
         return complex(value)
 
-    def vector(self, name: str, tail: str, head: str, kind: str, link: str, value: complex) -> None:
-        self.vectors.append(PlanVector(name, tail, head, kind, link, complex(value)))
+    def vector(self, name: str, tail: str, head: str, kind: str, link: str, value: complex,
+               line: complex = 0j) -> None:
+        """Record a vector; ``line`` is the direction of the line it was found on (0 if known whole)."""
+        unit = complex(line) / abs(line) if line != 0 else 0j
+        self.vectors.append(PlanVector(name, tail, head, kind, link, complex(value), unit))
 
-    def absolute(self, point: str, label: str, link: str, value: complex | None = None) -> None:
+    def absolute(self, point: str, label: str, link: str, value: complex | None = None,
+                 line: complex = 0j) -> None:
         """The vector from the pole to a point's vertex (its velocity or acceleration)."""
         value = self.vertices[label] if value is None else value
-        self.vector(f"{self.letter}_{point}", self.pole, label, "absolute", link, value)
+        self.vector(f"{self.letter}_{point}", self.pole, label, "absolute", link, value, line)
 
     def known(self, joint: str) -> str:
         """The label of a known joint's vertex; a fixed joint is the pole."""
@@ -700,11 +711,11 @@ def _hinge_on_guide(b: _Builder, where, group: RRP, guide: complex) -> None:
     if b.quantity == "velocity":
         point, t1, t2 = meet(f, 1j * arm, b.vertices[on_label], guide)
         b.vertex(label, point, joint)
-        b.vector(f"v_{relative}", first_label, label, "relative", link, t1 * 1j * arm)
+        b.vector(f"v_{relative}", first_label, label, "relative", link, t1 * 1j * arm, 1j * arm)
         if sliding is None:
-            b.absolute(joint, label, slider, t2 * guide)
+            b.absolute(joint, label, slider, t2 * guide, guide)
         else:
-            b.vector(f"v_{sliding}", on_label, label, "sliding", slider, t2 * guide)
+            b.vector(f"v_{sliding}", on_label, label, "sliding", slider, t2 * guide, guide)
             b.absolute(joint, label, slider)
         start: tuple[str, ...] = (f"v_{relative}",)
         tail = on_label
@@ -718,11 +729,11 @@ def _hinge_on_guide(b: _Builder, where, group: RRP, guide: complex) -> None:
         point, t1, t2 = meet(n, 1j * arm, k, guide)
         b.vertex(label, point, joint)
         b.vector(f"a^n_{relative}", first_label, f"n{number}", "normal", link, normal)
-        b.vector(f"a^t_{relative}", f"n{number}", label, "tangential", link, t1 * 1j * arm)
+        b.vector(f"a^t_{relative}", f"n{number}", label, "tangential", link, t1 * 1j * arm, 1j * arm)
         if sliding is None:
-            b.absolute(joint, label, slider, t2 * guide)
+            b.absolute(joint, label, slider, t2 * guide, guide)
         else:
-            b.vector(f"a^r_{sliding}", tail, label, "sliding", slider, t2 * guide)
+            b.vector(f"a^r_{sliding}", tail, label, "sliding", slider, t2 * guide, guide)
             b.absolute(joint, label, slider)
         start = (f"a^n_{relative}", f"a^t_{relative}")
     b.equations.append(((f"{letter}_{joint}",), b.terms(first, first_label) + start))
@@ -752,8 +763,8 @@ def _two_hinges(b: _Builder, where, group: RRR) -> None:
     if b.quantity == "velocity":
         point, t1, t2 = meet(f, 1j * arm1, q, 1j * arm2)
         b.vertex(label, point, joint)
-        b.vector(f"v_{rel1}", first_label, label, "relative", coupler, t1 * 1j * arm1)
-        b.vector(f"v_{rel2}", pivot_label, label, "relative", rocker, t2 * 1j * arm2)
+        b.vector(f"v_{rel1}", first_label, label, "relative", coupler, t1 * 1j * arm1, 1j * arm1)
+        b.vector(f"v_{rel2}", pivot_label, label, "relative", rocker, t2 * 1j * arm2, 1j * arm2)
         b.absolute(joint, label, rocker)
         b.equations.append((left + (f"v_{rel1}",), right + (f"v_{rel2}",)))
         b.equations.append(((f"v_{joint}",), right + (f"v_{rel2}",)))
@@ -766,10 +777,10 @@ def _two_hinges(b: _Builder, where, group: RRR) -> None:
         n2 = b.vertex(n2_label, q + normal2)
         point, t1, t2 = meet(n1, 1j * arm1, n2, 1j * arm2)
         b.vertex(label, point, joint)
-        b.vector(f"a^n_{rel1}", first_label, n1_label, "normal", coupler, normal1)
-        b.vector(f"a^t_{rel1}", n1_label, label, "tangential", coupler, t1 * 1j * arm1)
-        b.vector(f"a^n_{rel2}", pivot_label, n2_label, "normal", rocker, normal2)
-        b.vector(f"a^t_{rel2}", n2_label, label, "tangential", rocker, t2 * 1j * arm2)
+        b.vector(f"a^n_{rel1}", first_label, n1_label, "normal", coupler, normal1)   # both normals first,
+        b.vector(f"a^n_{rel2}", pivot_label, n2_label, "normal", rocker, normal2)    # as drawn by hand
+        b.vector(f"a^t_{rel1}", n1_label, label, "tangential", coupler, t1 * 1j * arm1, 1j * arm1)
+        b.vector(f"a^t_{rel2}", n2_label, label, "tangential", rocker, t2 * 1j * arm2, 1j * arm2)
         b.absolute(joint, label, rocker)
         transport = right + (f"a^n_{rel2}", f"a^t_{rel2}")
         b.equations.append((left + (f"a^n_{rel1}", f"a^t_{rel1}"), transport))
@@ -781,15 +792,21 @@ def _two_hinges(b: _Builder, where, group: RRR) -> None:
 
 
 def _block_on_lever(b: _Builder, where, group: RPR) -> None:
-    """The lever's point A3 under the block A2: ``v_A3 = v_A2 + v_A3A2``, ``v_A3 = v_C + v_A3C`` with v_A3C ⊥ CA.
+    """The block A2 on the crank pin slides in the slot of the lever; A3 is the lever's point under it.
 
-    Accelerations: ``a_A3 = a_A2 + a^k_A3A2 + a^r_A3A2 = a_C + a^n_A3C + a^t_A3C`` with the Coriolis term
-    ``a^k_A3A2 = 2ω₃ × v_A3A2`` (the block turns with the lever) and ``a^n_A3C = −ω₃²(A − C)``; a fixed
-    pivot C is the pole (``v_C = 0``). The digits are the links' numbers (block 2, lever 3 in the
-    slotted lever).
+    Velocities: ``v_A = v_A3 + v_A2A3`` (the block relative to the lever, along the slot) and
+    ``v_A3 = v_C + v_A3C`` with ``v_A3C ⊥ CA``. Accelerations: ``a_A = a_A3 + a^r_A2A3 + a^k_A2A3`` with
+    the Coriolis term ``a^k_A2A3 = 2ω₃ × v_A2A3`` (chapter 5's, of the block relative to the lever) and
+    ``a_A3 = a_C + a^n_A3C + a^t_A3C``, ``a^n_A3C = −ω₃²(A − C)``; a fixed pivot C is the pole
+    (``v_C = 0``). The digits are the links' numbers (block 2, lever 3 in the slotted lever).
+
+    On the acceleration plan the Coriolis component ends at the block's vertex a′, so its tail k is
+    known first, ``k = a′ − a^k_A2A3``; the line along the slot through k and the line ⊥ CA through n3
+    meet at a3′.
     """
     on_lever = f"{group.block}{b.numbers[group.lever]}"     # the lever's point under the block (A3 under A2)
     block2 = f"{group.block}{b.numbers[group.slider]}"      # the block at A: A2
+    sliding = f"{block2}{on_lever}"                          # A2 relative to A3: A2A3
     where[on_lever] = where[group.block]
     low = on_lever.lower()
     pivot_label = b.known(group.pivot)
@@ -798,35 +815,41 @@ def _block_on_lever(b: _Builder, where, group: RPR) -> None:
     arm = where[group.block] - where[group.pivot]
     along = arm / abs(arm)
     relative = f"{on_lever}{group.pivot}"
+    block_label = b.points[group.block]
     if b.quantity == "velocity":
-        a = b.vertices[b.points[group.block]]
+        a = b.vertices[block_label]
         point, t1, t2 = meet(q, 1j * arm, a, along)
         b.vertex(low, point, on_lever)
-        b.vector(f"v_{on_lever}{block2}", b.points[group.block], low, "sliding", group.slider, t2 * along)
         if fixed:
-            b.absolute(on_lever, low, group.lever, t1 * 1j * arm)
+            b.absolute(on_lever, low, group.lever, t1 * 1j * arm, 1j * arm)
         else:
-            b.vector(f"v_{relative}", pivot_label, low, "relative", group.lever, t1 * 1j * arm)
+            b.vector(f"v_{relative}", pivot_label, low, "relative", group.lever, t1 * 1j * arm, 1j * arm)
             b.absolute(on_lever, low, group.lever)
-        b.equations.append(((f"v_{on_lever}",), (f"v_{group.block}", f"v_{on_lever}{block2}")))
+        b.vector(f"v_{sliding}", low, block_label, "sliding", group.slider, -t2 * along, along)
+        b.equations.append(((f"v_{group.block}",), (f"v_{on_lever}", f"v_{sliding}")))
         if not fixed:
             b.equations.append(((f"v_{on_lever}",), (f"v_{group.pivot}", f"v_{relative}")))
         b.rates[group.lever] = _rate(t1 * 1j * arm, arm)
     else:
         assert b.velocity is not None
         omega3 = b.velocity.rates[group.lever]
-        tail, k = b.coriolis(group.lever, b.points[group.block], f"{on_lever}{block2}", group.slider)
+        coriolis = 2.0 * 1j * omega3 * b.velocity.vector(f"v_{sliding}").value
+        b.coriolis_count += 1
+        tail = "k" if b.coriolis_count == 1 else f"k{b.coriolis_count}"
+        b.vertex(tail, b.vertices[block_label] - coriolis)
+        b.vector(f"a^k_{sliding}", tail, block_label, "coriolis", group.slider, coriolis)
+        k = b.vertices[tail]
         normal = -omega3**2 * arm
         n_label = f"n{b.numbers[group.lever]}"
         n3 = b.vertex(n_label, q + normal)
+        b.vector(f"a^n_{relative}", pivot_label, n_label, "normal", group.lever, normal)
         point, t1, t2 = meet(k, along, n3, 1j * arm)
         b.vertex(low + "′", point, on_lever)
-        b.vector(f"a^r_{on_lever}{block2}", tail, low + "′", "sliding", group.slider, t1 * along)
-        b.vector(f"a^n_{relative}", pivot_label, n_label, "normal", group.lever, normal)
-        b.vector(f"a^t_{relative}", n_label, low + "′", "tangential", group.lever, t2 * 1j * arm)
+        b.vector(f"a^t_{relative}", n_label, low + "′", "tangential", group.lever, t2 * 1j * arm, 1j * arm)
+        b.vector(f"a^r_{sliding}", low + "′", tail, "sliding", group.slider, -t1 * along, along)
         b.absolute(on_lever, low + "′", group.lever)
         transport = b.terms(group.pivot, pivot_label) + (f"a^n_{relative}", f"a^t_{relative}")
-        b.equations.append(((f"a_{group.block}", f"a^k_{on_lever}{block2}", f"a^r_{on_lever}{block2}"), transport))
+        b.equations.append(((f"a_{group.block}",), transport + (f"a^r_{sliding}", f"a^k_{sliding}")))
         b.equations.append(((f"a_{on_lever}",), transport))
         b.rates[group.lever] = _rate(t2 * 1j * arm, arm)
     b.rates.setdefault(group.slider, b.rates[group.lever])
@@ -853,7 +876,7 @@ def _sliding_cross(b: _Builder, where, group: PRP) -> None:
         if on_name is None:       # on a fixed guide the joint's own vector lies along it
             continue
         kind = "v" if letter == "v" else "a^r"
-        b.vector(f"{kind}_{relative}", tail, label, "sliding", slider, t * d)
+        b.vector(f"{kind}_{relative}", tail, label, "sliding", slider, t * d, d)
         coriolis = (f"a^k_{relative}",) if tail != on_label else ()
         b.equations.append(((f"{letter}_{joint}",), (f"{letter}_{on_name}",) + coriolis + (f"{kind}_{relative}",)))
     b.absolute(joint, label, group.first_slider)
@@ -888,7 +911,7 @@ def _yoke(b: _Builder, where, group: RPP) -> None:
     if on_name is None:
         b.absolute(on_yoke, low, group.yoke)
     else:
-        b.vector(f"{kind}_{first}", tail, low, "sliding", group.yoke, t1 * guide)
+        b.vector(f"{kind}_{first}", tail, low, "sliding", group.yoke, t1 * guide, guide)
         b.absolute(on_yoke, low, group.yoke)
         coriolis = (f"a^k_{first}",) if tail != on_label else ()
         b.equations.append(((f"{letter}_{on_yoke}",), (f"{letter}_{on_name}",) + coriolis + (f"{kind}_{first}",)))
@@ -898,7 +921,7 @@ def _yoke(b: _Builder, where, group: RPP) -> None:
         middle = "k" if b.coriolis_count == 1 else f"k{b.coriolis_count}"
         b.vertex(middle, point + back)
         b.vector(f"a^k_{second}", low, middle, "coriolis", group.slider, back)
-    b.vector(f"{kind}_{second}", middle, block_label, "sliding", group.slider, -t2 * slot)
+    b.vector(f"{kind}_{second}", middle, block_label, "sliding", group.slider, -t2 * slot, slot)
     b.equations.append(((f"{letter}_{block}",), (f"{letter}_{on_yoke}",) + ((f"a^k_{second}",) if turning else ())
                         + (f"{kind}_{second}",)))
     b.rates.setdefault(group.yoke, b.rate_of(group.guide.link))
@@ -1051,7 +1074,8 @@ def velocity_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
     -----
     Crank-slider: ``v_B = v_A + v_BA``, ``v_BA ⊥ AB``, ``v_B ∥ guide``. Four-bar:
     ``v_B = v_A + v_BA = v_C + v_BC`` with ``v_BA ⊥ AB``, ``v_BC ⊥ CB``. Slotted lever:
-    ``v_A3 = v_A2 + v_A3A2`` with ``v_A3 ⊥ CA`` and ``v_A3A2 ∥ CA``; shaper: then
+    ``v_A = v_A3 + v_A2A3`` with ``v_A3 ⊥ CA`` and ``v_A2A3 ∥ CA`` (the block A2 relative to the lever's
+    point A3 under it); shaper: then
     ``v_D = v_B + v_DB``. ω of a link = (relative velocity)/(length), its sense from the direction.
     A six-bar's dyad E–F–D: ``v_F = v_E + v_FE = v_D + v_FD``, both v_E and v_D known. A slider J on
     a guide of the moving link g: ``v_J = v_K + v_JK = v_Jg + v_JJg`` with Jg the image of J on g
@@ -1088,8 +1112,8 @@ def acceleration_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
     -----
     Crank-slider: ``a_B = a_A + a^n_BA + a^t_BA`` with ``a^n_BA = ω₂² l_AB`` directed from B to A,
     ``a^t_BA ⊥ AB`` and ``a_B ∥ guide``. Four-bar: also ``a_B = a^n_BC + a^t_BC``. Slotted lever:
-    ``a_A3 = a_A2 + a^k_A3A2 + a^r_A3A2 = a^n_A3C + a^t_A3C``, ``a^k = 2ω₃ v_A3A2`` turned by 90°
-    in the sense of ω₃, ``a^r ∥ CA``. ε of a link = a^t/(length), its sense from the direction.
+    ``a_A = a_A3 + a^r_A2A3 + a^k_A2A3`` with ``a_A3 = a^n_A3C + a^t_A3C``, ``a^k_A2A3 = 2ω₃ v_A2A3``
+    turned by 90° in the sense of ω₃ (chapter 5's sense), ``a^r ∥ CA``. ε of a link = a^t/(length), its sense from the direction.
     A slider on a moving guide g: ``a_J = a_Jg + a^k_JJg + a^r_JJg`` with ``a^k_JJg = 2ω_g × v_JJg``.
     """
     _require_index(solution, index)
@@ -1100,6 +1124,92 @@ def acceleration_plan(mechanism: Mechanism, solution: Solution, index: int = 0,
                                     f"the velocity plan of the same position, φ = "
                                     f"{math.degrees(float(solution.phi[index])):g}°")
     return cast(AccelerationPlan, _build(mechanism, solution, index, "acceleration", velocity, points, scale))
+
+
+# --- the order of construction ---------------------------------------------------------------------
+
+class PlanStep(NamedTuple):
+    """One step of a plan's construction (:func:`plan_steps`): the vertex it finds and how."""
+
+    vertex: str
+    """The label of the vertex found at this step (``a``, ``n2``, ``b′`` …)."""
+    vectors: tuple[str, ...]
+    """The names of the vectors drawn at this step, in the order of construction."""
+    lines: tuple[tuple[str, complex, str], ...]
+    """The two (or more) lines whose intersection is the vertex, each as (the known vertex it passes
+    through, its unit direction, the name of the vector that lies on it); empty when the vertex is
+    drawn from a vector known whole (the crank pin's, a normal or Coriolis component, an image)."""
+
+
+def _line_direction(vector: PlanVector) -> complex:
+    if vector.line != 0:
+        return vector.line
+    return vector.value / abs(vector.value) if vector.value != 0 else 0j
+
+
+def plan_steps(plan: Plan) -> tuple[PlanStep, ...]:
+    """The order in which a plan is constructed by hand, one vertex per step.
+
+    The vectors are taken in the order of construction. Each step finds one new vertex: from the one
+    vector that joins it to a vertex already drawn when that vector is known whole (its length and
+    direction: the crank pin's velocity, a normal or Coriolis component, a point by its image), or as
+    the intersection of the lines of two vectors whose directions only are known (perpendicular to a
+    link, along a guide or a slot), each drawn through the vertex already known at its other end. The
+    vectors of a step are all those that join its vertex to vertices already drawn.
+
+    Parameters
+    ----------
+    plan : VelocityPlan or AccelerationPlan
+
+    Returns
+    -------
+    tuple of PlanStep
+        One step per vertex other than the pole, in the order of construction.
+
+    Notes
+    -----
+    Where an intersection has more than two lines (the four-bar's ``v_BC`` and ``v_B`` both run from
+    ``p`` in one direction) the relative vectors are used and lines through one vertex in one
+    direction are counted once. A vector that joins two vertices both drawn before it is drawn with
+    the step of its later vertex.
+    """
+    known = {plan.pole}
+    drawn: set[int] = set()
+    steps: list[PlanStep] = []
+    for index, vector in enumerate(plan.vectors):
+        if index in drawn:
+            continue
+        new = [end for end in (vector.tail, vector.head) if end not in known]
+        if not new:
+            drawn.add(index)
+            if steps:                            # both ends drawn already: it joins the last step
+                last = steps[-1]
+                steps[-1] = last._replace(vectors=last.vectors + (vector.name,))
+            continue
+        vertex = new[0]
+        if len(new) == 2:                        # neither end drawn (not built so): the head is found
+            known.add(vector.tail)
+            vertex = vector.head
+        group = [k for k, v in enumerate(plan.vectors) if k not in drawn
+                 and vertex in (v.tail, v.head) and ({v.tail, v.head} - {vertex}) <= known]
+        whole = len(group) == 1 or any(plan.vectors[k].line == 0 and plan.vectors[k].kind != "absolute"
+                                       for k in group)
+        lines: list[tuple[str, complex, str]] = []
+        if not whole:
+            chosen = [k for k in group if plan.vectors[k].kind != "absolute"]
+            if len(chosen) < 2:
+                chosen = group
+            for k in chosen:
+                v = plan.vectors[k]
+                through = v.head if v.tail == vertex else v.tail
+                direction = _line_direction(v)
+                if direction == 0 or any(t == through and abs(_cross(d, direction)) < 1e-12 for t, d, _ in lines):
+                    continue
+                lines.append((through, direction, v.name))
+        known.add(vertex)
+        drawn.update(group)
+        steps.append(PlanStep(vertex, tuple(plan.vectors[k].name for k in group), tuple(lines)))
+    return tuple(steps)
 
 
 # --- instant centres ------------------------------------------------------------------------------------
@@ -1423,7 +1533,7 @@ class PlanRow(NamedTuple):
     quantity: str
     """``velocity`` or ``acceleration``: the plan it is on."""
     name: str
-    """Its symbol in the book's lettering: ``v_A``, ``v_BA``, ``a^n_BA``, ``a^k_A3A2`` …"""
+    """Its symbol in the book's lettering: ``v_A``, ``v_BA``, ``a^n_BA``, ``a^k_A2A3`` …"""
     segment: str
     """Its segment on the plan, tail and head vertex: ``pa``, ``ab``, ``πa′``, ``n2b′`` …"""
     length_mm: float

@@ -24,12 +24,12 @@ from .assignments import Quantity, Task, crank_speed, register_assignment, round
 from ..core.errors import InvalidParameterError
 from ..core.validate import require_length
 from ..blocks.lines import distance_to_line
-from ..core.motion import Motion
+from ..core.motion import AngleMotion, Motion, PointMotion
 from ..linkages.base import Solution
 from ..linkages.slotted import Shaper, SlottedLever, SlottedRockers
 
 __all__ = ["half_swing", "time_ratio", "LimitPositions", "limit_positions", "ShaperStroke", "shaper_stroke",
-           "distance_from_lever"]
+           "distance_from_lever", "SlidingParts", "sliding_parts"]
 
 
 def half_swing(crank: float, pivot_distance: float) -> float:
@@ -166,6 +166,84 @@ def distance_from_lever(rockers: SlottedRockers, solution: Solution) -> Motion:
     ``h_N = Im(e^{−iξ}(O₂ − C))`` and its derivatives (:func:`mechanisms.blocks.lines.distance_to_line`).
     """
     return distance_to_line(complex(*rockers.rocker_pivot), complex(*rockers.pivot), solution.angle("lever")).distance
+
+
+@dataclass(frozen=True)
+class SlidingParts:
+    """The velocity and acceleration of a block sliding along a moving link, split into their parts.
+
+    All are complex vectors ``x + iy`` over the positions (m/s, m/s²).
+
+    Attributes
+    ----------
+    transport_velocity : ndarray
+        Velocity of the link's point under the block (the block welded to the link).
+    relative_velocity : ndarray
+        ``s_t e^{iθ}``: the block's velocity along the slot, seen from the link.
+    transport_acceleration : ndarray
+        Acceleration of the link's point under the block.
+    relative_acceleration : ndarray
+        ``s_tt e^{iθ}``, along the slot.
+    coriolis : ndarray
+        ``2 i θ_t s_t e^{iθ}``, the Coriolis acceleration 2 ω × v_rel, across the slot.
+    """
+
+    transport_velocity: np.ndarray
+    relative_velocity: np.ndarray
+    transport_acceleration: np.ndarray
+    relative_acceleration: np.ndarray
+    coriolis: np.ndarray
+
+    @property
+    def velocity(self) -> np.ndarray:
+        """The block's absolute velocity, the sum of the transport and relative parts (m/s)."""
+        return self.transport_velocity + self.relative_velocity
+
+    @property
+    def acceleration(self) -> np.ndarray:
+        """The block's absolute acceleration, transport + relative + Coriolis (m/s²)."""
+        return self.transport_acceleration + self.relative_acceleration + self.coriolis
+
+
+def sliding_parts(origin: PointMotion, direction: AngleMotion, along: Motion) -> SlidingParts:
+    """Split the motion of a block at ``origin + s e^{iθ}`` on a moving link into transport, relative and Coriolis parts.
+
+    Parameters
+    ----------
+    origin : PointMotion
+        A point Q of the link that carries the slot, with velocity and acceleration (m, m/s, m/s²),
+        for example the lever's pivot C or the crank pin A at the end of a slotted coupler.
+    direction : AngleMotion
+        The slot's direction θ on that link with its angular velocity and acceleration (rad, 1/s, 1/s²):
+        the link's angle, since the slot turns with the link.
+    along : Motion
+        The block's distance s from Q along the slot, with s_t and s_tt (m, m/s, m/s²).
+
+    Returns
+    -------
+    SlidingParts
+        The parts of ``v = v_Q + iθ_t s e^{iθ} + s_t e^{iθ}`` and
+        ``a = a_Q + (iθ_tt − θ_t²) s e^{iθ} + s_tt e^{iθ} + 2iθ_t s_t e^{iθ}`` (chapter 5, §5.7–§5.8).
+
+    Raises
+    ------
+    MissingDerivativeError
+        If any of the three motions lacks accelerations (solve with ``order=2``).
+
+    Notes
+    -----
+    The Coriolis part is 2 ω × v_rel with ω = θ_t: the relative velocity turned by 90° in the sense
+    of the link's rotation and doubled, the convention of chapter 5.
+    """
+    unit = np.exp(1j * np.asarray(direction.value, dtype=float))
+    arm = np.asarray(along.value, dtype=float) * unit          # s e^{iθ}, from Q to the block
+    omega, alpha = direction.d1, direction.d2
+    return SlidingParts(
+        transport_velocity=origin.d1 + 1j * omega * arm,
+        relative_velocity=along.d1 * unit,
+        transport_acceleration=origin.d2 + (1j * alpha - omega**2) * arm,
+        relative_acceleration=along.d2 * unit,
+        coriolis=2j * omega * along.d1 * unit)
 
 
 # --- the slotted lever's assignment (python -m mechanisms assign slotted-lever) -------------------------------------------------------------------------------------

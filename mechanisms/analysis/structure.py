@@ -3,13 +3,20 @@ structure of a composed linkage: its links, pairs and Assur groups (chapter 6)."
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
-from ..core.errors import InvalidParameterError
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..core.errors import InvalidParameterError, SingularPositionWarning
+from ..core.motion import AngleMotion, PointMotion
+from ..core.validate import require_finite_array, require_length
 from ..linkages.composed import Linkage, describe_group
 from ..linkages.groups import LinkPoint, Triad
 
-__all__ = ["mobility", "Structure", "BOOK_STRUCTURES", "StructureReport", "GroupReport", "structure_of"]
+__all__ = ["mobility", "Structure", "BOOK_STRUCTURES", "StructureReport", "GroupReport", "structure_of",
+           "dyad_rates"]
 
 
 def mobility(moving_links: int, lower_pairs: int, higher_pairs: int = 0) -> int:
@@ -164,3 +171,70 @@ def structure_of(linkage: Linkage) -> StructureReport:
     pairs = [(p.kind, p.first, p.second, p.joint) for p in linkage.pairs()]
     links = linkage.link_joints()
     return StructureReport(linkage.describe(), links, pairs, len(links) - 1, len(pairs), groups)
+
+
+SINGULAR_SINE = 1e-12
+"""|sin(θ₅ − θ₄)| below which :func:`dyad_rates` warns that the dyad's links are in line."""
+
+
+def dyad_rates(first: PointMotion, second: PointMotion, first_angle: ArrayLike, second_angle: ArrayLike,
+               first_length: float, second_length: float) -> tuple[AngleMotion, AngleMotion]:
+    """Angular velocities and accelerations of an RRR dyad whose outer joints both move, by hand (chapter 6).
+
+    The dyad's links run from the outer joints E (``first``) and H (``second``) to their common hinge F,
+    of lengths L₄ and L₅ and at the angles θ₄ and θ₅, so that ``E + L₄ e^{iθ₄} = H + L₅ e^{iθ₅}``
+    (chapter 6, §6.6, whose letters these are).
+
+    Parameters
+    ----------
+    first, second : PointMotion
+        The outer joints E and H with their velocities and accelerations (m, m/s, m/s²): solve with
+        ``order=2``.
+    first_angle, second_angle : array_like
+        θ₄ and θ₅ (rad), the directions from E and from H to the hinge F, at the same positions.
+    first_length, second_length : float
+        L₄ = |EF| and L₅ = |HF| (m).
+
+    Returns
+    -------
+    (AngleMotion, AngleMotion)
+        θ₄ and θ₅ with their angular velocities (1/s) and accelerations (1/s²).
+
+    Raises
+    ------
+    MissingDerivativeError
+        If ``first`` or ``second`` lacks accelerations.
+
+    Warns
+    -----
+    SingularPositionWarning
+        Where the two links are in line, |sin(θ₅ − θ₄)| < :data:`SINGULAR_SINE`: the rates there are
+        infinite or undetermined, and the values returned are meaningless.
+
+    Notes
+    -----
+    Differentiating the loop equation, with Δv = v_H − v_E and Δa = a_H − a_E,
+    ``i L₄ θ₄ₜ e^{iθ₄} − i L₅ θ₅ₜ e^{iθ₅} = Δv``; its component along link 5 (multiply by e^{−iθ₅},
+    take the real part) removes θ₅ₜ, and along link 4 removes θ₄ₜ:
+    ``θ₄ₜ = Re(Δv e^{−iθ₅}) / (L₄ sin(θ₅ − θ₄))``, ``θ₅ₜ = Re(Δv e^{−iθ₄}) / (L₅ sin(θ₅ − θ₄))``.
+    The accelerations solve the same system with ``f = Δa + L₄ θ₄ₜ² e^{iθ₄} − L₅ θ₅ₜ² e^{iθ₅}`` in place
+    of Δv. For a fixed H this is the four-bar's Cramer's rule (chapter 4).
+    """
+    theta_1 = require_finite_array("first_angle", first_angle, "rad")
+    theta_2 = require_finite_array("second_angle", second_angle, "rad")
+    a = require_length("first_length", first_length)
+    b = require_length("second_length", second_length)
+    dv = second.d1 - first.d1
+    da = second.d2 - first.d2
+    e1, e2 = np.exp(1j * theta_1), np.exp(1j * theta_2)
+    sine = np.sin(theta_2 - theta_1)
+    if np.any(np.abs(sine) < SINGULAR_SINE):
+        warnings.warn("the dyad's two links are in line at some positions: their rates are infinite or "
+                      "undetermined there", SingularPositionWarning, stacklevel=2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        omega_1 = np.real(dv * np.conj(e2)) / (a * sine)
+        omega_2 = np.real(dv * np.conj(e1)) / (b * sine)
+        f = da + a * omega_1**2 * e1 - b * omega_2**2 * e2
+        alpha_1 = np.real(f * np.conj(e2)) / (a * sine)
+        alpha_2 = np.real(f * np.conj(e1)) / (b * sine)
+    return AngleMotion(theta_1, omega_1, alpha_1), AngleMotion(theta_2, omega_2, alpha_2)

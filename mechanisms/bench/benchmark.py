@@ -40,7 +40,7 @@ from ..core.motion import AngleMotion, Motion
 from ..linkages.base import Mechanism, Solution, registry
 from ..core.errors import SingularPositionWarning
 from ..linkages.composed import Linkage
-from ..linkages.four_bar import FourBar, _pqf, half_angle_formula, stable_formula
+from ..linkages.four_bar import FourBar, _pqf, four_bar_family, half_angle_formula, stable_formula
 from ..linkages.groups import RRR, Crank
 from ..linkages.linkage_file import load_linkage
 from ..verify import central_difference, solve_constraints
@@ -422,6 +422,86 @@ def _bench_peers(mechanism: FourBar, n: int, repeat: int) -> list[dict]:
     return results
 
 
+# --- a family of four-bars ------------------------------------------------------------------------------
+
+FAMILY_MEMBERS = 100_000
+"""Members of the benchmark's family of four-bars (the family row)."""
+
+FAMILY_POSITIONS = 360
+"""Crank positions of each member in the family row."""
+
+FAMILY_CHUNK = 2_000
+"""Members solved per call of :func:`~mechanisms.linkages.four_bar.four_bar_family` (a call's arrays stay
+within tens of megabytes)."""
+
+PEER_FAMILY_MEMBERS = 500
+"""Members of the same family that pylinkage solves, one linkage after another, to time its loop."""
+
+
+def benchmark_family(members: int = FAMILY_MEMBERS, seed: int = 0) -> tuple[np.ndarray, ...]:
+    """The family row's four-bars: the benchmark's crank-rocker (1, 3.5, 3, C = (4, 0) m) with each of L1, L2,
+    L3 and x_C scaled by a factor from 0.95 to 1.05 (all crank-rockers that assemble at every angle)."""
+    factors = np.random.default_rng(seed).uniform(0.95, 1.05, (4, members))
+    return 1.0 * factors[0], 3.5 * factors[1], 3.0 * factors[2], 4.0 * factors[3]
+
+
+def _pylinkage_member(crank: float, coupler: float, rocker: float, frame_x: float, positions: int):
+    """One member of the family as a pylinkage linkage; the crank turns 2π/positions per step."""
+    from pylinkage.actuators import Crank
+    from pylinkage.components import Ground
+    from pylinkage.dyads import RRRDyad
+    from pylinkage.simulation import Linkage
+
+    origin, pivot = Ground(0.0, 0.0, name="O"), Ground(frame_x, 0.0, name="C")
+    arm = Crank(anchor=origin, radius=crank, angular_velocity=2.0 * math.pi / positions, name="A")
+    joint = RRRDyad(arm.output, pivot, distance1=coupler, distance2=rocker, name="B")
+    return Linkage([origin, pivot, arm, joint], name="four-bar")
+
+
+def bench_family(members: int = FAMILY_MEMBERS, positions: int = FAMILY_POSITIONS, repeat: int = 3,
+                 peers: bool = True) -> list[dict]:
+    """The family row: ``members`` four-bars × ``positions`` crank angles, positions only, in ns per
+    linkage-position; beside it pylinkage's numba solver looping over :data:`PEER_FAMILY_MEMBERS` members of
+    the same family (building each linkage, as a loop over geometries does), when installed.
+
+    The error column is the largest distance of B from the extended-precision reference over three members.
+    """
+    l1, l2, l3, xc = benchmark_family(members)
+    phi = 2.0 * math.pi * np.arange(1, positions + 1) / positions      # pylinkage's angles after each step
+
+    def ours():
+        for lo in range(0, members, FAMILY_CHUNK):
+            hi = lo + FAMILY_CHUNK
+            four_bar_family(l1[lo:hi], l2[lo:hi], l3[lo:hi], xc[lo:hi], 0.0, phi, order=0)
+
+    seconds = best_time(ours, repeat)
+    sample = four_bar_family(l1[:3], l2[:3], l3[:3], xc[:3], 0.0, phi, order=0).points["B"].value
+    error = 0.0
+    references = []
+    for k in range(3):
+        m = FourBar(float(l1[k]), float(l2[k]), float(l3[k]), (float(xc[k]), 0.0))
+        psi = reference(m, phi)[0][0]
+        b = m.crank * np.exp(1j * phi) + m.coupler * np.exp(1j * psi.astype(float))
+        references.append(b)
+        error = max(error, float(np.max(np.abs(sample[k] - b))))
+    label = f"family {members}x{positions}"
+    results = [_result(label, "closed form, family", 0, None, members * positions, seconds, error)]
+    if peers and pylinkage_available():
+        count = min(members, PEER_FAMILY_MEMBERS)
+        _pylinkage_member(1.0, 3.5, 3.0, 4.0, positions).step_fast(iterations=2)   # compile numba's code first
+
+        def loop():
+            return [_pylinkage_member(float(l1[k]), float(l2[k]), float(l3[k]), float(xc[k]), positions)
+                    .step_fast(iterations=positions) for k in range(count)]
+
+        seconds = best_time(loop, repeat)
+        solved = loop()
+        peer_error = max(float(np.max(np.hypot(solved[k][:, 3, 0] - references[k].real,
+                                               solved[k][:, 3, 1] - references[k].imag))) for k in range(3))
+        results.append(_result(label, "pylinkage step_fast", 0, None, count * positions, seconds, peer_error))
+    return results
+
+
 # --- the whole run ------------------------------------------------------------------------------------
 
 def machine_description() -> str:
@@ -458,6 +538,7 @@ def run(sizes: Iterable[int] = DEFAULT_SIZES, repeat: int = 3, mechanisms: Itera
         ``None`` for the floor).
     """
     table = benchmark_mechanisms()
+    sizes = [int(n) for n in sizes]
     names = list(table) if mechanisms is None else list(mechanisms)
     results, notes = [], []
     peers = peers and pylinkage_available()
@@ -468,6 +549,9 @@ def run(sizes: Iterable[int] = DEFAULT_SIZES, repeat: int = 3, mechanisms: Itera
             results += _bench_mechanism(name, table[name], int(n), repeat)
         if peers and "four-bar" in names:
             results += _bench_peers(cast(FourBar, table["four-bar"]), int(n), repeat)
+    if "four-bar" in names:
+        # the family row: FAMILY_MEMBERS four-bars, fewer when the run's sizes are smaller (a quick run stays quick)
+        results += bench_family(min(FAMILY_MEMBERS, max(sizes)), FAMILY_POSITIONS, repeat, peers)
     extended = np.finfo(np.longdouble).eps
     if extended >= np.finfo(float).eps:
         notes.append("numpy.longdouble is double precision on this machine: errors below ~1e-15 are not resolved")
@@ -831,6 +915,8 @@ def plot_work_precision(rows: list[dict], axes=None):
     """
     import matplotlib.pyplot as plt
 
+    from ..plot.describe import add_description
+
     if axes is None:
         _, axes = plt.subplots(1, 3, figsize=(11, 3.6), sharey=True)
     for ax, quantity in zip(axes, QUANTITIES):
@@ -853,6 +939,9 @@ def plot_work_precision(rows: list[dict], axes=None):
         ax.xaxis.set_minor_formatter(plt.NullFormatter())
         ax.set_title(f"{quantity} ({_ERROR_UNITS[quantity]})")
         ax.set_xlabel("time per position, ns")
+        add_description(ax, f"a work-precision diagram of the {quantity}: each point is one method at one "
+                            "setting (Newton's tolerance, the step of the differences), placed at its time per "
+                            "position and its largest error; lower and further left is better")
     axes[0].set_ylabel("largest error")
     figure = axes[0].figure
     handles, names = axes[-1].get_legend_handles_labels()
@@ -909,9 +998,12 @@ def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=N
     """
     import matplotlib.pyplot as plt
 
+    from ..plot.describe import add_description, covering
+
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 4))
     h = np.asarray(steps, dtype=float)
+    asymptotes = []
     eps = np.finfo(float).eps
     # the velocities drawn over the accelerations, smaller: for large steps the two errors coincide
     for (name, values), colour, power, size, z in zip(errors.items(), ("#1f77b4", "#d62728"), (1, 2),
@@ -919,14 +1011,20 @@ def plot_step_errors(steps: Sequence[float], errors: dict[str, np.ndarray], ax=N
         ax.loglog(h, values, "o-", color=colour, ms=size, zorder=z, label=f"{name}: error")
         truncation = values[0] * (h / h[0]) ** 2
         roundoff = (1 if power == 1 else 4) * eps / h**power
-        ax.loglog(h, truncation, ":", color=colour, lw=1)
-        ax.loglog(h, roundoff, "--", color=colour, lw=1)
+        with covering(ax) as drawn:
+            ax.loglog(h, truncation, ":", color=colour, lw=1)
+            ax.loglog(h, roundoff, "--", color=colour, lw=1)
+        asymptotes += drawn.artists
     ax.plot([], [], "k:", lw=1, label=r"truncation $\propto h^2$")
     ax.plot([], [], "k--", lw=1, label=r"round-off $\propto \epsilon_\mathrm{mach}/h$, $\epsilon_\mathrm{mach}/h^2$")
     ax.set_ylim(1e-12, 1e1)
     ax.set_xlabel(r"step $h$, rad")
     ax.set_ylabel("largest error, 1/s or 1/s²")
     ax.legend(fontsize=8)
+    add_description(ax, "the error of central differences against the step h: the truncation error falls as "
+                        "h² (dotted lines) as the step shrinks, the round-off error grows as ε_mach/h for "
+                        "velocities and ε_mach/h² for accelerations (dashed lines), so each error curve has a "
+                        "lowest point between the two", asymptotes)
     return ax
 
 
@@ -952,6 +1050,8 @@ def plot_stored(report: dict, mechanism: str = "four-bar", ax=None,
         h = 1e-5, accelerations at h = 1e-4 rad), ``pylinkage`` (its ``step`` and ``step_fast``).
     """
     import matplotlib.pyplot as plt
+
+    from ..plot.describe import add_description
 
     if ax is None:
         _, ax = plt.subplots(figsize=(6.5, 4))
@@ -979,5 +1079,7 @@ def plot_stored(report: dict, mechanism: str = "four-bar", ax=None,
         ax.loglog(*zip(*points), marker=marker or ".", color=colour, ls=ls, label=key)
     ax.set_xlabel(r"number of positions $N_\varphi$")
     ax.set_ylabel("time per position, ns")
+    add_description(ax, f"the time per position of each method against the number of positions solved at once, "
+                        f"for the {mechanism}, the best of the repeated runs of a stored benchmark")
     ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
     return ax

@@ -22,8 +22,8 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.errors import AssemblyError
-from ..core.validate import require_branch, require_length
+from ..core.errors import AssemblyError, InvalidParameterError
+from ..core.validate import LENGTH_MAX, LENGTH_MIN, require_branch, require_finite_array, require_length
 from ..core.angles import angle_of
 from ..core.motion import AngleMotion, PointMotion
 
@@ -56,12 +56,17 @@ class Hinge:
         True where p, q and J are collinear: the two links are in line, the velocities of J
         are unbounded and are set to ``nan``; also where p and q coincide (possible for
         |pJ| = |qJ| only), where J itself is undefined (anywhere on a circle) and is ``nan``.
+    assembled : ndarray of bool or None
+        Only when solved with ``lenient=True``: True where the circles meet. Where they do not,
+        J, both angles and their rates are ``nan`` and ``singular`` is False. ``None`` otherwise
+        (a hinge solved strictly assembles everywhere, or raises).
     """
 
     point: PointMotion
     angle_p: AngleMotion
     angle_q: AngleMotion
     singular: np.ndarray
+    assembled: np.ndarray | None = None
 
 
 def _cramer(conjugate: np.ndarray, rhs: np.ndarray, inverse_det: np.ndarray) -> np.ndarray:
@@ -70,38 +75,61 @@ def _cramer(conjugate: np.ndarray, rhs: np.ndarray, inverse_det: np.ndarray) -> 
     return np.multiply(conjugate, rhs).real * inverse_det
 
 
-def _assembly_failure(distance, shape, total: float, difference: float, tolerance: float, angles) -> None:
+def _metres(value) -> str:
+    """A length for a message: ``0.5 m`` for one number, ``up to 0.5 m`` for an array of them."""
+    return f"{float(value):g} m" if np.ndim(value) == 0 else f"up to {float(np.max(value)):g} m"
+
+
+def _assembly_failure(distance, shape, total, difference, tolerance, angles) -> None:
     """Raise the :class:`AssemblyError` of :func:`hinge`, naming the positions that fail."""
     where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), shape)
-    far = total - distance < -tolerance
-    near = distance - difference < -tolerance
+    far = np.broadcast_to(total - distance < -tolerance, shape)
+    near = np.broadcast_to(distance - difference < -tolerance, shape)
     if far.any():
         reason = ("the two links cannot reach each other (joints farther apart than the sum of the link "
-                  f"lengths {total:g} m)")
+                  f"lengths {_metres(total)})")
     else:
         reason = ("one circle lies inside the other (joints closer than the difference of the link "
-                  f"lengths {difference:g} m)")
+                  f"lengths {_metres(difference)})")
     if far.any() and near.any():
         reason += (" and, elsewhere, one circle lies inside the other (joints closer than "
-                   f"{difference:g} m)")
+                   f"{_metres(difference)})")
     raise AssemblyError(reason, None if where is None else where[far | near])
 
 
+def _lengths(name: str, value: object) -> float | np.ndarray:
+    """A link length (one number, :func:`~mechanisms.core.validate.require_length`) or an array of them
+    (a family of linkages), each in [LENGTH_MIN, LENGTH_MAX] m; or raise naming ``name``."""
+    if np.ndim(value) == 0:  # type: ignore[arg-type]
+        return require_length(name, value)
+    array = require_finite_array(name, value, "m")  # type: ignore[arg-type]
+    bad = (array < LENGTH_MIN) | (array > LENGTH_MAX)
+    if bad.any():
+        raise InvalidParameterError(name, array[bad][:3].tolist(),
+                                    f"lengths from {LENGTH_MIN:.3g} m to {LENGTH_MAX:.3g} m")
+    return array
+
+
 def _one_position(solve: Callable[..., Hinge], p: PointMotion, q: PointMotion, length_p: float, length_q: float,
-                  branch: int | np.ndarray, angles: ArrayLike | None) -> Hinge:
+                  branch: int | np.ndarray, angles: ArrayLike | None, lenient: bool) -> Hinge:
     """One position: solved as an array of one, returned as numbers."""
-    one = solve(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles)
-    return Hinge(one.point[0], one.angle_p[0], one.angle_q[0], one.singular[0])
+    one = solve(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles, lenient)
+    return Hinge(one.point[0], one.angle_p[0], one.angle_q[0], one.singular[0],
+                 None if one.assembled is None else one.assembled[0])
 
 
-def _checked(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray,
-             angles: ArrayLike | None) -> tuple[float, float, Any, np.ndarray, np.ndarray]:
-    """The hinge's inputs checked: the lengths, the side(s) as floats, ``d = q − p`` and ``D = |d|``.
+def _checked(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, branch: int | np.ndarray,
+             angles: ArrayLike | None, lenient: bool = False) -> tuple[Any, Any, Any, np.ndarray, np.ndarray,
+                                                                       np.ndarray | None]:
+    """The hinge's inputs checked: the lengths, the side(s) as floats, ``d = q − p``, ``D = |d|`` and, when
+    ``lenient``, the mask of the positions where the circles meet (else None).
 
-    Raises :class:`AssemblyError` naming the crank angles where the circles do not meet.
+    ``d`` has the shape of the positions broadcast with the lengths and sides (a family of linkages: one
+    row per member). Raises :class:`AssemblyError` naming the crank angles where the circles do not meet,
+    unless ``lenient``.
     """
-    length_p = require_length("length_p", length_p)
-    length_q = require_length("length_q", length_q)
+    length_p = _lengths("length_p", length_p)
+    length_q = _lengths("length_q", length_q)
     branch_array = np.asarray(branch)
     side: Any
     if branch_array.ndim == 0:
@@ -112,30 +140,67 @@ def _checked(p: PointMotion, q: PointMotion, length_p: float, length_q: float, b
             require_branch(branch_array[~valid].ravel()[0].item())
         side = branch_array.astype(float)
     d = q.value - p.value
+    shape = np.broadcast_shapes(np.shape(d), np.shape(length_p), np.shape(length_q), np.shape(side))
+    if shape != np.shape(d):
+        d = np.array(np.broadcast_to(d, shape))         # a family: one row of positions per member
     distance = np.abs(d)
     total = length_p + length_q
     difference = abs(length_p - length_q)
     tolerance = ASSEMBLY_TOLERANCE * total
+    if lenient:
+        assembled = (total - distance >= -tolerance) & (distance - difference >= -tolerance)
+        return length_p, length_q, side, d, distance, assembled
     # the extremes decide whether any position fails; the masks are made only then. fmin/fmax skip the
     # positions that an earlier singular position left undefined (nan), so they cannot hide a failure.
     shortest, longest = (np.fmin.reduce(distance, axis=None), np.fmax.reduce(distance, axis=None)) if distance.size \
         else (1.0, 0.0)
-    if shortest - difference < -tolerance or total - longest < -tolerance:
+    if np.ndim(total):      # a family: each member's own limits
+        failing = bool(((distance - difference < -tolerance) | (total - distance < -tolerance)).any())
+    else:
+        failing = shortest - difference < -tolerance or total - longest < -tolerance
+    if failing:
         _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
-    return length_p, length_q, side, d, distance
+    return length_p, length_q, side, d, distance, None
 
 
-def hinge_plain(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray = 1,
-                angles: ArrayLike | None = None) -> Hinge:
+def _unassembled(solved: Hinge, assembled: np.ndarray | None) -> Hinge:
+    """A leniently solved hinge: ``nan`` wherever the circles do not meet, and the mask kept."""
+    if assembled is None:
+        return solved
+    missing = ~assembled
+    if missing.any():
+        for motion in (solved.point, solved.angle_p, solved.angle_q):
+            for array in motion.derivatives():
+                if array is not None:
+                    np.copyto(array, np.nan, where=missing)
+        solved.singular[missing] = False
+    return Hinge(solved.point, solved.angle_p, solved.angle_q, solved.singular, assembled)
+
+
+def hinge_plain(p: PointMotion, q: PointMotion, length_p: float | np.ndarray, length_q: float | np.ndarray,
+                branch: int | np.ndarray = 1, angles: ArrayLike | None = None, lenient: bool = False) -> Hinge:
     """:func:`hinge` written as the book writes it: the same formulas, plain numpy, no speed tricks.
 
     The book shows this form; :func:`hinge`, which the mechanisms use, computes the same numbers
     in place (fewer temporaries stay in the processor's cache, chapter 9's appendix) and the tests
     compare the two. Parameters, results and errors are those of :func:`hinge`.
     """
-    if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:
-        return _one_position(hinge_plain, p, q, length_p, length_q, branch, angles)
-    length_p, length_q, side, d, distance = _checked(p, q, length_p, length_q, branch, angles)
+    return _solved(hinge_plain, _hinge_plain, p, q, length_p, length_q, branch, angles, lenient)
+
+
+def _solved(solve: Callable[..., Hinge], formulas: Callable[..., Hinge], p: PointMotion, q: PointMotion,
+            length_p: Any, length_q: Any, branch: int | np.ndarray, angles: ArrayLike | None, lenient: bool) -> Hinge:
+    """What :func:`hinge` and :func:`hinge_plain` share: one position solved as an array of one, the inputs
+    checked, the ``formulas`` applied, and (``lenient``) the positions that do not assemble marked."""
+    if np.ndim(p.value) == 0 and np.ndim(q.value) == 0 and np.ndim(length_p) == 0 and np.ndim(length_q) == 0:
+        return _one_position(solve, p, q, length_p, length_q, branch, angles, lenient)
+    length_p, length_q, side, d, distance, assembled = _checked(p, q, length_p, length_q, branch, angles, lenient)
+    return _unassembled(formulas(p, q, length_p, length_q, side, d, distance), assembled)
+
+
+def _hinge_plain(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, side: Any, d: np.ndarray,
+                 distance: np.ndarray) -> Hinge:
+    """The formulas of :func:`hinge_plain`, on checked inputs."""
     total, difference = length_p + length_q, abs(length_p - length_q)
     # twice = 2·h·D by Heron, the small factors near a limit clipped at zero against round-off
     twice = (np.sqrt(np.maximum(total - distance, 0.0) * (total + distance))
@@ -175,33 +240,40 @@ def hinge_plain(p: PointMotion, q: PointMotion, length_p: float, length_q: float
                  AngleMotion(theta_q, omega_q, alpha_q), singular)
 
 
-def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, branch: int | np.ndarray = 1,
-          angles: ArrayLike | None = None) -> Hinge:
+def hinge(p: PointMotion, q: PointMotion, length_p: float | np.ndarray, length_q: float | np.ndarray,
+          branch: int | np.ndarray = 1, angles: ArrayLike | None = None, lenient: bool = False) -> Hinge:
     """Solve two links meeting at a hinge: J at the lengths |pJ| = ``length_p`` and |qJ| = ``length_q``.
 
     Parameters
     ----------
     p, q : PointMotion
         The known joints (m, m/s, m/s²), arrays over the crank positions.
-    length_p, length_q : float
-        Lengths of the links p → J and q → J (m).
+    length_p, length_q : float or ndarray
+        Lengths of the links p → J and q → J (m). An array (a family of linkages, e.g. of shape
+        (G, 1) against positions of shape (G, N) or (N,)) broadcasts against the positions.
     branch : int or array of int
         +1: J to the left of the directed line p → q; -1: to the right. An array (one sign per
-        position) lets a mechanism hold an assembly mode through a change point.
+        position, or per member of a family) lets a mechanism hold an assembly mode through a
+        change point.
     angles : array_like, optional
         The crank angles φ (rad) of the positions, only to name them in an
         :class:`~mechanisms.errors.AssemblyError`.
+    lenient : bool
+        False (default): raise where the circles do not meet. True: mark those positions in
+        :attr:`Hinge.assembled` and give ``nan`` there (a family in which some members, or some
+        positions, do not assemble).
 
     Returns
     -------
     Hinge
-        J and the angles of both links, up to order ``min(p.order, q.order)``.
+        J and the angles of both links, up to order ``min(p.order, q.order)``, of the shape of the
+        positions broadcast with the lengths and ``branch``.
 
     Raises
     ------
     AssemblyError
-        Where the circles do not meet: the joints are farther apart than |pJ| + |qJ|, or one
-        circle lies inside the other (distance below ||pJ| − |qJ||).
+        Unless ``lenient``, where the circles do not meet: the joints are farther apart than
+        |pJ| + |qJ|, or one circle lies inside the other (distance below ||pJ| − |qJ||).
 
     Notes
     -----
@@ -218,9 +290,12 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float, length_q: float, bran
     with the determinant ``r_p × r_q`` = |pJ| |qJ| sin(θ_q − θ_p), zero where the links are in line
     (chapter 4; the lecture's crank-rocker is the case p = A, q = C).
     """
-    if np.ndim(p.value) == 0 and np.ndim(q.value) == 0:
-        return _one_position(hinge, p, q, length_p, length_q, branch, angles)
-    length_p, length_q, side, d, distance = _checked(p, q, length_p, length_q, branch, angles)
+    return _solved(hinge, _hinge_in_place, p, q, length_p, length_q, branch, angles, lenient)
+
+
+def _hinge_in_place(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, side: Any, d: np.ndarray,
+                    distance: np.ndarray) -> Hinge:
+    """The formulas of :func:`hinge`, on checked inputs, computed in place."""
     order = min(p.order, q.order)
     total, difference = length_p + length_q, abs(length_p - length_q)
     # Heron's product h·D, its two small factors near a limit computed directly and clipped at

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import Callable, Sequence
 
@@ -28,11 +29,11 @@ from ..core.angles import wrap_angle
 from .groups import RRR, Crank, Group
 from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
 from ..blocks.circle_circle import hinge
-from ..blocks.crank import crank_pin
+from ..blocks.crank import crank_angle, crank_pin
 from ..core.errors import AssemblyError, InvalidParameterError, describe_range
 from ..core.exact import squared_distance_equals
-from ..core.validate import require_branch, require_length, require_flag, require_pair
-from ..core.motion import AngleMotion, Motion, fixed_point
+from ..core.validate import require_branch, require_finite_array, require_length, require_flag, require_pair
+from ..core.motion import AngleMotion, Motion, PointMotion, fixed_point
 
 __all__ = [
     "FourBar",
@@ -44,6 +45,8 @@ __all__ = [
     "cramer_rates",
     "assembly_intervals",
     "change_point_angles",
+    "FourBarFamily",
+    "four_bar_family",
 ]
 
 CHANGE_POINT_TOLERANCE = 0.0
@@ -451,3 +454,110 @@ class FourBar(Mechanism):
         a, b = self.frame
         return (self.crank * np.cos(phi) + self.coupler * np.cos(psi) - self.rocker * np.cos(xi) - a,
                 self.crank * np.sin(phi) + self.coupler * np.sin(psi) - self.rocker * np.sin(xi) - b)
+
+
+# --- a family of four-bars solved at once --------------------------------------------------------------
+
+@dataclass(frozen=True)
+class FourBarFamily:
+    """The kinematics of a family of four-bars (:func:`four_bar_family`): arrays of shape G + (N,), one row of
+    N crank positions per member.
+
+    Attributes
+    ----------
+    phi : ndarray, shape (N,)
+        The crank angles φ (rad), the same for every member.
+    angles : dict of AngleMotion
+        ``crank`` (φ), ``coupler`` (ψ) and ``rocker`` (ξ) with their rates (1/s, 1/s²).
+    points : dict of PointMotion
+        ``A`` and ``B`` (m, m/s, m/s²; O and each member's C are fixed).
+    assembled : ndarray of bool
+        True where the member assembles at that crank angle; elsewhere every value is ``nan``.
+    singular : ndarray of bool
+        True where coupler and rocker are in line (rates unbounded, ``nan``).
+    """
+
+    phi: np.ndarray
+    angles: dict[str, AngleMotion]
+    points: dict[str, PointMotion]
+    assembled: np.ndarray
+    singular: np.ndarray
+
+
+def _member_lengths(name: str, value: ArrayLike) -> np.ndarray:
+    array = require_finite_array(name, value, "m")
+    if (array <= 0.0).any():
+        raise InvalidParameterError(name, array[array <= 0.0][:3].tolist(), "positive lengths (m)")
+    return array
+
+
+def four_bar_family(crank: ArrayLike, coupler: ArrayLike, rocker: ArrayLike, frame_x: ArrayLike, frame_y: ArrayLike,
+                    phi: ArrayLike, omega: ArrayLike = 1.0, alpha: ArrayLike = 0.0, order: int = 2,
+                    branch: ArrayLike = 1, lenient: bool = False) -> FourBarFamily:
+    """Solve a family of four-bars at once: every member at every crank angle, one call.
+
+    Parameters
+    ----------
+    crank, coupler, rocker : array_like
+        L1, L2, L3 (m), positive: arrays of one shape G, or numbers (broadcast together).
+    frame_x, frame_y : array_like
+        The rocker pivot C = (x_C, y_C) of each member (m), likewise.
+    phi : array_like
+        The N crank angles φ (rad), one-dimensional, the same for every member.
+    omega, alpha : float or array_like
+        φ_t (1/s) and φ_tt (1/s²): one number or one per crank angle.
+    order : int
+        0, 1 or 2 time derivatives.
+    branch : int or array_like of int
+        σ = ±1 for every member, or one per member: B to the left (+1) or right (−1) of A → C, held at
+        every crank angle (as ``FourBar(..., keep_side=True)``; change points are not continued).
+    lenient : bool
+        False: a member that does not assemble at some crank angle raises :class:`AssemblyError` naming
+        it. True: those positions are marked in :attr:`FourBarFamily.assembled` and are ``nan``.
+
+    Returns
+    -------
+    FourBarFamily
+        Arrays of shape G + (N,).
+
+    Notes
+    -----
+    The members are composed of the same routines as :class:`FourBar` (the crank,
+    :func:`~mechanisms.blocks.crank.crank_pin`, and two links meeting at a hinge,
+    :func:`~mechanisms.blocks.circle_circle.hinge`), whose arithmetic works on whole arrays: a family costs
+    as much per member and position as one linkage does per position.
+    """
+    lengths = [_member_lengths(name, value) for name, value in (("crank", crank), ("coupler", coupler),
+                                                                  ("rocker", rocker))]
+    pivots = [require_finite_array(name, value, "m") for name, value in (("frame_x", frame_x), ("frame_y", frame_y))]
+    sides = require_finite_array("branch", branch)
+    if not np.isin(sides, (-1.0, 1.0)).all():
+        raise InvalidParameterError("branch", sides[~np.isin(sides, (-1.0, 1.0))][:3].tolist(),
+                                    "+1 or -1 (one sign, or one per member)")
+    try:
+        shape = np.broadcast_shapes(*(v.shape for v in (*lengths, *pivots, sides)))
+    except ValueError:
+        raise InvalidParameterError("crank, coupler, rocker, frame_x, frame_y, branch",
+                                    ", ".join(str(v.shape) for v in (*lengths, *pivots, sides)),
+                                    "arrays of one shape G (or numbers), which broadcast together") from None
+    angle = crank_angle(phi, omega, alpha, order)
+    if angle.value.ndim != 1:
+        raise InvalidParameterError("phi", f"an array of shape {angle.value.shape}",
+                                    "a one-dimensional array of crank angles")
+    l1, l2, l3, xc, yc, side = (np.broadcast_to(v, shape)[..., np.newaxis] for v in (*lengths, *pivots, sides))
+    full = shape + angle.value.shape
+    unit = crank_pin(angle, 1.0)                                # e^{iφ} and its rates, then each member's L1
+    pin = PointMotion(*(None if v is None else l1 * v for v in unit.derivatives()))
+    zero = np.zeros(full, dtype=complex)
+    pivot = PointMotion(np.broadcast_to(xc + 1j * yc, full), *([zero] * order))
+    joint = hinge(pin, pivot, l2, l3, side, lenient=True)
+    assembled = np.asarray(joint.assembled)
+    if not lenient and not assembled.all():
+        members = np.argwhere(~assembled.all(axis=-1))
+        first = tuple(members[0])
+        raise AssemblyError(f"member {first if len(first) > 1 else first[0]} of the family cannot be assembled at "
+                            f"some crank angles ({len(members)} member{'s' if len(members) != 1 else ''} in all; "
+                            "solve with lenient=True to mark them instead)", angle.value[~assembled[first]])
+    crank_motion = AngleMotion(*(None if v is None else np.broadcast_to(v, full) for v in angle.derivatives()))
+    return FourBarFamily(angle.value, {"crank": crank_motion, "coupler": joint.angle_p, "rocker": joint.angle_q},
+                         {"A": pin, "B": joint.point}, assembled, joint.singular)

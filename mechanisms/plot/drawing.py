@@ -23,6 +23,9 @@ from ..core.errors import InvalidParameterError
 from ..core.motion import PointMotion
 from ..present.colours import (ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR,
                                link_colours)
+from ..present.describe import (angle_text, extent_text, mechanism_name, plain_text, point_text, position_sentence,
+                                series, value_text)
+from .describe import add_description, covering
 from .workarounds import light_figures_in_notebooks
 
 # axis labels typeset as the book's math (mathtext), never plain letters
@@ -259,6 +262,22 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
     matplotlib Axes
     """
     ax = _new_axes(ax)
+    with covering(ax) as drawn:
+        _draw(ax, mechanism, solution, index, labels, size, guide_half_length, label_offset, colours)
+    where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
+    moving = [f"a slot of the {link} through {series([plain_text(point_label(b)) for b in blocks])}"
+              for link, _, _, blocks in moving_guides(mechanism, solution, index)]
+    text = position_sentence(mechanism, where, float(np.ravel(solution.phi)[index]),
+                             labels if isinstance(labels, Mapping) else None)
+    add_description(ax, text + (" Drawn also: " + series(moving) + "." if moving else ""), drawn.artists)
+    return ax
+
+
+def _draw(ax: Axes, mechanism: Mechanism, solution: Solution, index: int, labels: bool | Mapping[str, str],
+          size: float | None, guide_half_length: float | None,
+          label_offset: tuple[float, float] | Mapping[str, tuple[float, float]] | None,
+          colours: Mapping[str, str] | None) -> None:
+    """The artists of :func:`draw`."""
     colour_of = link_colours(mechanism, colours)
     size = size or 0.03 * _extent(solution)
     where = {name: complex(solution.point(name).value[index]) for name in solution.point_names}
@@ -303,7 +322,6 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
                         va="baseline" if fixed is not None else "center")
     ax.set_xlabel(AXIS_X)
     ax.set_ylabel(AXIS_Y)
-    return ax
 
 
 def annotate_angle(ax: Axes, vertex: complex, start: float, stop: float, label: str, radius: float,
@@ -312,6 +330,16 @@ def annotate_angle(ax: Axes, vertex: complex, start: float, stop: float, label: 
 
     A dotted reference line is drawn along the ``start`` direction (usually the +x axis).
     """
+    with covering(ax) as drawn:
+        _angle_arc(ax, vertex, start, stop, label, radius, colour)
+    add_description(ax, f"the angle {plain_text(label)} is marked at {point_text(vertex)}, from "
+                        f"{value_text(np.degrees(start), '°')} to {value_text(np.degrees(stop), '°')}",
+                    drawn.artists)
+
+
+def _angle_arc(ax: Axes, vertex: complex, start: float, stop: float, label: str, radius: float,
+               colour: str) -> None:
+    """The artists of :func:`annotate_angle`."""
     sweep = np.linspace(start, stop, 40)
     arc = vertex + radius * np.exp(1j * sweep)
     ax.plot(arc.real, arc.imag, color=colour, lw=0.9)
@@ -327,7 +355,9 @@ def annotate_angle(ax: Axes, vertex: complex, start: float, stop: float, label: 
 def annotate_length(ax: Axes, first: complex, second: complex, label: str, offset: float) -> None:
     """Write a length's symbol beside the segment first–second, ``offset`` m to its left."""
     middle = 0.5 * (first + second) + offset * 1j * np.exp(1j * np.angle(second - first))
-    ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11)
+    text = ax.text(middle.real, middle.imag, label, ha="center", va="center", fontsize=11)
+    add_description(ax, f"the length {plain_text(label)} is written beside the segment from "
+                        f"{point_text(first, '')} to {point_text(second)}", [text])
 
 
 def annotate_dimension(ax: Axes, start: complex, end: complex, label: str, both: bool = True,
@@ -338,11 +368,14 @@ def annotate_dimension(ax: Axes, start: complex, end: complex, label: str, both:
     arrow from start to end (a coordinate such as the slider's s). The label sits ``offset`` m
     to the left of the arrow (default: 4 % of its length).
     """
-    ax.annotate("", xy=(end.real, end.imag), xytext=(start.real, start.imag),
-                arrowprops={"arrowstyle": "<->" if both else "->", "color": "0.2", "lw": 0.9})
+    arrow = ax.annotate("", xy=(end.real, end.imag), xytext=(start.real, start.imag),
+                        arrowprops={"arrowstyle": "<->" if both else "->", "color": "0.2", "lw": 0.9})
     direction = np.exp(1j * np.angle(end - start))
     where = 0.5 * (start + end) + (offset or 0.06 * abs(end - start) + 0.004) * 1j * direction
-    ax.text(where.real, where.imag, label, ha="center", va="center", fontsize=11)
+    text = ax.text(where.real, where.imag, label, ha="center", va="center", fontsize=11)
+    kind = "a dimension arrow" if both else "an arrow"
+    add_description(ax, f"{kind} marks {plain_text(label)} from {point_text(start, '')} to "
+                        f"{point_text(end)}, {value_text(abs(end - start), 'm')} long", [arrow, text])
 
 
 def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[int] | None = None,
@@ -367,8 +400,13 @@ def draw_positions(mechanism: Mechanism, solution: Solution, indices: Iterable[i
         trajectories(solution, paths, ax=ax)
         ax.legend(loc="upper right", ncol=2)
     draw_options.setdefault("labels", False)
-    for i in range(len(solution)) if indices is None else indices:
-        draw(mechanism, solution, i, ax=ax, **draw_options)
+    chosen = list(range(len(solution)) if indices is None else indices)
+    with covering(ax) as drawn:
+        for i in chosen:
+            draw(mechanism, solution, i, ax=ax, **draw_options)
+    angles = [angle_text(float(np.ravel(solution.phi)[i]), "") for i in chosen]
+    add_description(ax, f"the {mechanism_name(mechanism)} drawn at {len(chosen)} crank positions, one over "
+                        f"another: φ = {series(angles)}", drawn.artists)
     return ax
 
 
@@ -402,6 +440,9 @@ def trajectories(solution: Solution | None, points: dict[str, PointMotion] | Seq
     for label, motion in points.items():
         x, y = (np.append(motion.x, motion.x[0]), np.append(motion.y, motion.y[0])) if closed else (motion.x, motion.y)
         ax.plot(x, y, lw=1.2, label=label, color=next(colours))
+    names = series([plain_text(label) for label in points])
+    add_description(ax, f"path{'s' if len(points) > 1 else ''} of {names}"
+                        + (" over a whole turn of the crank" if closed else ""))
     ax.set_xlabel(AXIS_X)
     ax.set_ylabel(AXIS_Y)
     return ax
@@ -424,8 +465,17 @@ def vectors_along(motion: PointMotion, every: int = 1, ax: Axes | None = None, s
             continue
         v = vec[sel]
         scale = scale or 0.15 * extent / (np.max(np.abs(v)) or 1.0)
-        ax.quiver(p.real, p.imag, (v * scale).real, (v * scale).imag, angles="xy", scale_units="xy", scale=1.0,
-                  color=colour, width=0.004, zorder=3)
+        arrows = ax.quiver(p.real, p.imag, (v * scale).real, (v * scale).imag, angles="xy", scale_units="xy",
+                           scale=1.0, color=colour, width=0.004, zorder=3)
+        kind, unit = ("velocity", "m/s") if colour == VELOCITY_COLOUR else ("acceleration", "m/s²")
+        size = np.abs(v)
+        relative = np.round(size / (np.max(size) or 1.0), 6)
+        largest, smallest = int(np.argmax(relative)), int(np.argmin(relative))
+        tiny = 1e-9 * float(np.max(np.abs(p)))
+        sizes = (f"all {value_text(size[0], unit)} long" if relative[largest] == relative[smallest] else
+                 f"the longest {value_text(size[largest], unit)} at {point_text(p[largest], 'm', tiny)}, the "
+                 f"shortest {value_text(size[smallest], unit)} at {point_text(p[smallest], 'm', tiny)}")
+        add_description(ax, f"{kind} vectors at {v.size} points of a path, {sizes}", [arrows])
     return ax
 
 
@@ -523,6 +573,18 @@ def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax: Axes 
         Also draw the trajectories of both points.
     """
     ax = _new_axes(ax)
+    with covering(ax) as drawn:
+        count = _snapshots(ax, first, second, role, every, paths)
+    ends = "" if not paths else (f", with the dashed paths of its two ends "
+                                 f"({extent_text(np.concatenate([first.value, second.value]))})")
+    what = "block" if role == "slider" else "bar"
+    add_description(ax, f"the {role} drawn as a {what} at {count} instants, fainter for the earlier ones"
+                        + ends, drawn.artists)
+    return ax
+
+
+def _snapshots(ax: Axes, first: PointMotion, second: PointMotion, role: str, every: int, paths: bool) -> int:
+    """The artists of :func:`link_snapshots`; returns how many instants it drew."""
     colour = ROLE_COLOURS.get(role, "k")
     index = np.arange(0, first.value.size, every)
     if role == "slider":  # a block that translates: draw the block, its guide and the travel
@@ -546,4 +608,4 @@ def link_snapshots(first: PointMotion, second: PointMotion, role: str, ax: Axes 
             ax.plot(motion.x, motion.y, color="0.6", lw=0.8, ls="--")
     ax.set_xlabel(AXIS_X)
     ax.set_ylabel(AXIS_Y)
-    return ax
+    return len(index)

@@ -9,7 +9,9 @@ vectors and components have the colour of the link whose motion they describe
 
 from __future__ import annotations
 
+import dataclasses
 import re
+import textwrap
 from typing import TYPE_CHECKING, Any, Mapping
 
 import matplotlib.pyplot as plt
@@ -17,17 +19,20 @@ import numpy as np
 from matplotlib.patches import Polygon
 from matplotlib.text import Annotation
 
-from ..analysis.plans import AccelerationPlan, InstantCentres, Plan, VelocityPlan
+from ..analysis.plans import AccelerationPlan, InstantCentres, Plan, PlanStep, VelocityPlan, plan_steps
+from ..core.errors import InvalidParameterError
 from ..linkages.base import Block, Ground, Mechanism, Solution
 from ..present.tables import MarkdownTable, markdown_table
+from .describe import add_description
 from .drawing import ACCELERATION_COLOUR, ROLE_COLOURS, VELOCITY_COLOUR, draw, point_label
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["LINK_ROLES", "draw_plan", "draw_plans", "draw_instant_centres", "draw_centre_velocities",
-           "vertex_label", "segment_label", "vector_label", "vector_table"]
+__all__ = ["LINK_ROLES", "draw_plan", "draw_plans", "draw_plan_step", "draw_plan_steps", "step_caption",
+           "draw_instant_centres", "draw_centre_velocities", "vertex_label", "segment_label", "vector_label",
+           "vector_table"]
 
 LINK_ROLES = {"crank": "crank", "coupler": "coupler", "rocker": "rocker", "lever": "lever", "slider": "slider",
               "rod": "coupler"}
@@ -90,7 +95,7 @@ def segment_label(tail: str, head: str) -> str:
 
 
 def vector_label(latex: str) -> str:
-    r"""A plan's vector name in mathtext, the joints' digits as subscripts: ``a^{k}_{A3A2}`` → ``$a^{k}_{A_3A_2}$``.
+    r"""A plan's vector name in mathtext, the joints' digits as subscripts: ``a^{k}_{A2A3}`` → ``$a^{k}_{A_2A_3}$``.
 
     Parameters
     ----------
@@ -100,7 +105,7 @@ def vector_label(latex: str) -> str:
     Returns
     -------
     str
-        The name in math mode, as the book writes it ($v_{BA}$, $a^n_{BA}$, $a^k_{A_3A_2}$; chapter 10).
+        The name in math mode, as the book writes it ($v_{BA}$, $a^n_{BA}$, $a^k_{A_2A_3}$; chapter 10).
     """
     return "$" + re.sub(r"([A-Z])(\d+)", r"\1_{\2}", latex) + "$"
 
@@ -556,6 +561,140 @@ def draw_plans(mechanism: Mechanism, solution: Solution, velocity: VelocityPlan,
     fig.tight_layout()
     _keep_letters_inside(axes[0])
     return fig, axes
+
+
+def step_caption(plan: Plan, step: PlanStep) -> str:
+    r"""What a step of a plan's construction does, in words, with the book's letters in mathtext.
+
+    Parameters
+    ----------
+    plan : VelocityPlan or AccelerationPlan
+    step : PlanStep
+        One of :func:`mechanisms.analysis.plans.plan_steps` of the plan.
+
+    Returns
+    -------
+    str
+        For a vector known whole, "from $p$ draw $v_A$, to $a$" (or "draw $a^k_{A_2A_3}$ to end at
+        $a'$: it starts at $k$"); for a point of a link found by proportion, "$s_2$ by the image of its
+        link; draw $v_{S_2}$"; for an intersection, "the lines of $v_{BA}$ through $a$ and of $v_B$
+        through $p$ meet at $b$".
+    """
+    vectors = {v.name: v for v in plan.vectors}
+    found = vertex_label(step.vertex)
+    if step.lines:
+        parts = [f"of {vector_label(vectors[name].latex)} through {vertex_label(through)}"
+                 for through, _, name in step.lines]
+        return "the lines " + " and ".join(parts) + f" meet at {found}"
+    first = vectors[step.vectors[0]]
+    start = first.tail if first.head == step.vertex else first.head
+    if first.head != step.vertex:
+        return f"draw {vector_label(first.latex)} to end at {vertex_label(start)}: it starts at {found}"
+    if all(vectors[name].kind == "absolute" for name in step.vectors) and first is not plan.vectors[0]:
+        return f"{found} by the image of its link; draw {vector_label(first.latex)}"
+    return f"from {vertex_label(start)} draw {vector_label(first.latex)}, to {found}"
+
+
+def _partial(plan: Plan, steps: tuple[PlanStep, ...], upto: int) -> Plan:
+    """The plan as drawn after its first ``upto`` steps: their vertices and vectors only."""
+    labels = {plan.pole} | {s.vertex for s in steps[:upto]}
+    names = {name for s in steps[:upto] for name in s.vectors}
+    points = {point: label for point, label in plan.points.items() if label in labels}
+    images = {link: members for link, members in plan.images.items()
+              if all(plan.points[m] in labels for m in members)}
+    return dataclasses.replace(plan, vertices={k: v for k, v in plan.vertices.items() if k in labels},
+                               points=points, vectors=tuple(v for v in plan.vectors if v.name in names),
+                               equations=(), images=images)
+
+
+def draw_plan_step(plan: Plan, step: int, ax: Axes | None = None, caption: bool = True,
+                   label_offset: float = 3.5) -> Axes:
+    r"""Draw a plan as it stands after ``step`` steps of its construction, with that step's lines.
+
+    Parameters
+    ----------
+    plan : VelocityPlan or AccelerationPlan
+        From :func:`mechanisms.analysis.plans.velocity_plan` or ``acceleration_plan``.
+    step : int
+        How many steps of :func:`mechanisms.analysis.plans.plan_steps` are done, 1 … their number.
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure if omitted.
+    caption : bool
+        Title the panel "step k: …" with :func:`step_caption`; otherwise "step k".
+    label_offset : float
+        As for :func:`draw_plan`.
+
+    Returns
+    -------
+    matplotlib Axes
+        In mm of the drawing, with the limits of the finished plan, so that the panels of a sequence
+        share one frame: the vectors of the steps done, drawn as :func:`draw_plan` draws them; the
+        vertex of this step ringed; and, when it is an intersection, the lines intersected, dotted,
+        across the whole panel.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``step`` is not an integer from 1 to the number of steps.
+    """
+    steps = plan_steps(plan)
+    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or not 1 <= step <= len(steps):
+        raise InvalidParameterError("step", step, f"a step of the construction, 1 … {len(steps)}")
+    current = steps[step - 1]
+    if ax is None:
+        _, ax = plt.subplots(figsize=(5.0, 5.0))
+    text = step_caption(plan, current)
+    title = f"step {step}: {text}" if caption else f"step {step}"
+    draw_plan(_partial(plan, steps, step), ax=ax, title="\n".join(textwrap.wrap(title, 40)),
+              label_offset=label_offset)
+    (x0, x1), (y0, y1) = _limits(plan, label_offset)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    reach = 2.0 * max(x1 - x0, y1 - y0)
+    for through, direction, _ in current.lines:
+        z = plan.drawn(through)
+        a, b = z - reach * direction, z + reach * direction
+        ax.plot([a.real, b.real], [a.imag, b.imag], ls=":", lw=1.3, color="0.3", zorder=2)
+    found = plan.drawn(current.vertex)
+    ax.plot(found.real, found.imag, "o", ms=11, mfc="none", mec="black", mew=1.2, zorder=6)
+    ax.title.set_fontsize(11)
+    add_description(ax, f"Step {step} of the construction of the {plan.quantity} plan: {text}.")
+    return ax
+
+
+def draw_plan_steps(plan: Plan, columns: int = 2, panel: float = 3.5) -> tuple[Figure, list[Axes]]:
+    """Every step of a plan's construction, one panel per step (:func:`draw_plan_step`), in a grid.
+
+    Parameters
+    ----------
+    plan : VelocityPlan or AccelerationPlan
+    columns : int
+        Panels per row (1 … 3). Two panels of 3.5 in make a figure of 7 in, which a page of the book
+        shows at about its natural size, so that the letters stay as large as the text.
+    panel : float
+        Width of a panel, inches; the height follows the plan's shape.
+
+    Returns
+    -------
+    (figure, axes)
+        The axes of the steps, in order; unused cells of the grid are removed.
+    """
+    if isinstance(columns, bool) or not isinstance(columns, (int, np.integer)) or not 1 <= columns <= 3:
+        raise InvalidParameterError("columns", columns, "1, 2 or 3 panels per row")
+    if not (isinstance(panel, (int, float)) and np.isfinite(panel) and panel > 0):
+        raise InvalidParameterError("panel", panel, "a panel width > 0, inches")
+    count = len(plan_steps(plan))
+    rows = -(-count // columns)
+    (x0, x1), (y0, y1) = _limits(plan)
+    height = panel * min(max((y1 - y0) / (x1 - x0), 0.5), 1.6) + 0.9
+    fig, grid = plt.subplots(rows, columns, figsize=(panel * columns, height * rows), squeeze=False)
+    axes = list(grid.ravel())
+    for k, ax in enumerate(axes[:count], start=1):
+        draw_plan_step(plan, k, ax=ax)
+    for ax in axes[count:]:
+        fig.delaxes(ax)
+    fig.tight_layout()
+    return fig, axes[:count]
 
 
 def _keep_letters_inside(ax: Axes, pad: float = 3.0) -> None:

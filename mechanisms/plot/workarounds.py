@@ -15,7 +15,7 @@ from matplotlib.figure import Figure
 
 from ..present.colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR
 
-__all__ = ["PALETTE_COLOURS", "palette_png", "light_figures_in_notebooks"]
+__all__ = ["PALETTE_COLOURS", "palette_png", "described_png", "light_figures_in_notebooks"]
 
 PALETTE_COLOURS = 64
 """Colours of a figure stored by a notebook: the book's figures use a few dozen, plus antialiasing."""
@@ -57,13 +57,14 @@ def palette_png(fig: Figure, colours: int = PALETTE_COLOURS) -> bytes:
 
 
 def light_figures_in_notebooks() -> None:
-    """In a notebook (IPython), store every figure shown as a :func:`palette_png`.
+    """In a notebook (IPython), store every figure shown as a :func:`palette_png`, with its description.
 
     Works around the size of matplotlib-inline's PNGs: the book's notebooks keep their outputs in
     the repository and the site serves them, and full-colour PNGs made them several megabytes.
     Relies on IPython's display formatters: the PNG formatter of ``matplotlib.figure.Figure`` is
     replaced, after pyplot's inline backend (matplotlib-inline) has registered its own, which it does
-    when its module is imported: this function imports it first. Outside IPython it does nothing.
+    when its module is imported: this function imports it first. The formatter returns the PNG with its
+    metadata, the figure's text alternative (:func:`described_png`). Outside IPython it does nothing.
     """
     try:
         from IPython import get_ipython
@@ -78,4 +79,17 @@ def light_figures_in_notebooks() -> None:
         # the inline backend registers its own formatters when its module is first imported (at the first
         # figure): import it now, so that the formatter below is registered after it and is the one used
         import matplotlib_inline.backend_inline  # noqa: F401
-    shell.display_formatter.formatters["image/png"].for_type(Figure, palette_png)
+    shell.display_formatter.formatters["image/png"].for_type(Figure, described_png)
+
+
+def described_png(fig: Figure) -> tuple[bytes, dict[str, str]]:
+    """A figure's :func:`palette_png` with its text alternative: IPython's ``(data, metadata)`` of a PNG.
+
+    IPython's display formatters may return the data with its metadata; the notebook then stores
+    ``{"image/png": {"alt": description}}`` beside the PNG (:func:`~mechanisms.plot.describe.describe_figure`),
+    which the book's Sphinx extension ``_ext/figure_alt.py`` makes the image's ``alt``. The PNG's bytes
+    are those of :func:`palette_png`.
+    """
+    from .describe import describe_figure
+
+    return palette_png(fig), {"alt": describe_figure(fig)}

@@ -12,9 +12,14 @@ from typing import Mapping
 from ..core.errors import InvalidParameterError
 from ..linkages.base import Bar, Mechanism
 
-__all__ = ["ROLE_COLOURS", "PATH_COLOURS", "VELOCITY_COLOUR", "ACCELERATION_COLOUR", "BLOCK_FILL",
+__all__ = ["ROLE_COLOURS", "PATH_COLOURS", "PATH_COLOUR", "VELOCITY_COLOUR", "ACCELERATION_COLOUR", "BLOCK_FILL",
            "link_colours"]
 
+# Every colour a line is drawn in keeps a contrast of at least 3:1 against white, the background of the
+# figures and of the player in both of the site's modes (WCAG 2.1, 1.4.11 non-text contrast); the vectors'
+# colours, in which their labels are also written, at least 4.5:1 (1.4.3, text). Where matplotlib's
+# default ("tab10") colour was fainter, a darker shade of the same hue stands in for it
+# (tests/test_colours.py computes the ratios).
 ROLE_COLOURS = {
     "frame": "#4d4d4d",
     "crank": "#1f77b4",
@@ -22,13 +27,15 @@ ROLE_COLOURS = {
     "rocker": "#2ca02c",
     "lever": "#2ca02c",
     "slider": "#9467bd",
-    "point": "#ff7f0e",
+    "point": "#d96200",
 }
-PATH_COLOURS = ("#8c564b", "#ff7f0e", "#7f7f7f", "#bcbd22", "#1f77b4", "#2ca02c", "#9467bd", "#d62728",
+PATH_COLOURS = ("#8c564b", "#d96200", "#7f7f7f", "#8f8f00", "#1f77b4", "#2ca02c", "#9467bd", "#d62728",
                 "#17a589", "#5d6d7e")
 """Colours of trajectories, in order (distinct from the vector colours)."""
-VELOCITY_COLOUR = "#17becf"
-ACCELERATION_COLOUR = "#e377c2"
+PATH_COLOUR = "#8c8c8c"
+"""The grey of the path a point traces in a scene, fainter than the links drawn over it."""
+VELOCITY_COLOUR = "#0b8090"
+ACCELERATION_COLOUR = "#bf429e"
 BLOCK_FILL = "#efe7f7"
 """The fill of a sliding block (its outline is the slider's colour)."""
 

@@ -37,7 +37,9 @@ import numpy as np
 from ..core.errors import AssemblyError, SingularPositionWarning, InvalidParameterError
 from ..core.motion import PointMotion
 from ..linkages.base import Bar, Block, Ground, Guide, Mechanism, Solution
-from .colours import ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOURS, ROLE_COLOURS, VELOCITY_COLOUR, link_colours
+from .colours import (ACCELERATION_COLOUR, BLOCK_FILL, PATH_COLOUR, ROLE_COLOURS, VELOCITY_COLOUR,
+                      link_colours)
+from .describe import angle_text, extent_text, plain_text, point_text, position_sentence, sentence, series, value_text
 
 __all__ = [
     "Scene",
@@ -161,6 +163,9 @@ class Scene:
     still: tuple[int, int] = (0, 0)
     caption: str = ""
     _json: str = field(default="", repr=False)
+    description: str = ""
+    """The figure's text alternative: what the still image shows, and what the player lets the reader move
+    (the ``<desc>`` of the still SVG)."""
 
     def json(self) -> str:
         """The scene's data as compact JSON (what the page embeds)."""
@@ -178,7 +183,7 @@ class Scene:
         member, frame = self.still
         caption = f'<p class="mech-caption">{html_text.escape(self.caption)}</p>' if self.caption else ""
         return (f'<div class="mech-player" data-still="{member},{frame}">'
-                f'{_svg(self.data, member, frame)}'
+                f'{_svg(self.data, member, frame, self.description)}'
                 f'<script type="application/json" class="mech-scene">{_script_safe(self.json())}</script>'
                 f'{caption}</div>')
 
@@ -323,7 +328,86 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
         frame = int(frames_valid[np.argmin(np.abs(np.angle(np.exp(1j * (phi[frames_valid] - still_angle)))))])
     else:
         frame = int(frames_valid[0]) if frames_valid.size else 0
-    return Scene(data, (chosen, frame), caption)
+    still_scene = Scene(data, (chosen, frame), caption)
+    still_scene.description = _description(still_scene, members[chosen], labels)
+    return still_scene
+
+
+# --- the text alternative ---------------------------------------------------------------------------------
+
+def _symbol(label: str) -> str:
+    """A label of the player (``L_2``, ``ψ``, ``v_B``) as read: ``L₂``."""
+    return plain_text(f"${label}$") if "$" not in label else plain_text(label)
+
+
+def _description(figure: Scene, computed: dict[str, Any], labels: bool | Mapping[str, str]) -> str:
+    """What a scene's still image shows and what its player moves.
+
+    The mechanism with its parameters, the crank angle of the still, the joints where they are, the paths
+    drawn with their extent, each arrow's size and direction (from the member as computed, ``computed``:
+    numbers to three significant figures, not the stored steps of 1/4000) and the readout's values at that
+    frame as the player prints them, then the parameters an explorer lets the reader change.
+    """
+    data = figure.data
+    member, frame = figure.still
+    mechanism = computed["mechanism"]
+    letters = labels if isinstance(labels, Mapping) else None
+    joints = [name for name in data["members"][member]["xy"] if name not in data["dots"]]
+    where = {name: complex(computed["where"][name][frame]) for name in joints}
+    phi = math.radians(data["phi"][frame])
+    symbol = data["angle"]
+    parts = [sentence(data["title"]) if data["title"] else "",
+             position_sentence(mechanism, where, phi, letters, _symbol(symbol))]
+    shown = []
+    for name in data["dots"]:
+        point = complex(computed["where"][name][frame])
+        if math.isfinite(point.real):
+            shown.append(f"{_symbol(data.get('names', {}).get(name, name))} at {point_text(point)}")
+    if shown:
+        parts.append(sentence("Points marked: " + ", ".join(shown)))
+    paths = []
+    for name in data["paths"]:
+        track = computed["where"][name]
+        track = track[np.isfinite(track)]
+        if track.size:
+            paths.append(f"{_symbol(data.get('names', {}).get(name, name))} ({extent_text(track)})")
+    if paths:
+        parts.append(sentence(f"Path{'s' if len(paths) > 1 else ''} of " + series(paths)))
+    arrows = []
+    for index, arrow in enumerate(data["arrows"]):
+        vector = complex(computed["vectors"][index][frame])
+        if not (math.isfinite(vector.real) and math.isfinite(vector.imag)):
+            continue
+        unit = {"velocity": "m/s", "acceleration": "m/s²"}.get(arrow["kind"], "")
+        direction = f", pointing at {angle_text(math.atan2(vector.imag, vector.real), '')} from the x axis" \
+            if abs(vector) else ""
+        arrows.append(f"{_symbol(arrow['label'])} = {value_text(abs(vector), unit)}{direction}")
+    if arrows:
+        parts.append(sentence("Arrows: " + "; ".join(arrows)))
+    values = []
+    for index, item in enumerate(data["readout"]):
+        value = data["members"][member]["values"][index][frame]
+        if value is not None:
+            values.append(f"{_symbol(item['label'])} = {value_text(value, item['unit'])}")
+    if values:
+        parts.append(sentence("At this position " + series(values)))
+    notes = [plain_text(note) for note in data["members"][member].get("notes", [])]
+    if notes:
+        parts.append(sentence("; ".join(notes)))
+    frames = len(data["phi"])
+    moving = f"The player turns the crank through {frames} positions, with a crank-angle slider"
+    sliders = [f"{_symbol(p['label'])} from {value_text(min(p['values']), p['unit'])} to "
+               f"{value_text(max(p['values']), p['unit'])} in {len(p['values'])} steps"
+               for p in data["parameters"]]
+    if sliders:
+        key = data["keys"][member]
+        now = [f"{_symbol(p['label'])} = {value_text(k, p['unit'])}" for p, k in zip(data["parameters"], key)]
+        moving += f" and a slider for {series(sliders)}; the image shows {series(now)}"
+    valid = data["members"][member]["valid"]
+    if "0" in valid:
+        moving += f"; this mechanism assembles at {valid.count('1')} of the {frames} positions"
+    parts.append(sentence(moving))
+    return " ".join(part for part in parts if part)
 
 
 # --- computing the members --------------------------------------------------------------------------
@@ -560,8 +644,12 @@ def _parts(mechanism: Mechanism, colours: Mapping[str, str]) -> list[dict[str, A
 
 # --- the still image: SVG, the same elements the player moves -------------------------------------------
 
-def _svg(data: dict[str, Any], member_index: int, frame: int) -> str:
-    """The figure at one frame as SVG; the player updates these elements' coordinates in place."""
+def _svg(data: dict[str, Any], member_index: int, frame: int, description: str = "") -> str:
+    """The figure at one frame as SVG; the player updates these elements' coordinates in place.
+
+    Its ``<title>`` (the scene's title) names it and its ``<desc>`` (:attr:`Scene.description`) says what it
+    shows, for a reader who cannot see it.
+    """
     member = data["members"][member_index]
     x0, y0 = data["origin"]
     step, size = data["step"], data["size"]
@@ -583,7 +671,7 @@ def _svg(data: dict[str, Any], member_index: int, frame: int) -> str:
     # the drawing is in metres with y up: flipped inside one group; text is written unflipped
     body: list[str] = []
     for index, name in enumerate(data["paths"]):
-        body.append(f'<path class="mech-path" data-point="{name}" fill="none" stroke="#b3b3b3" '
+        body.append(f'<path class="mech-path" data-point="{name}" fill="none" stroke="{PATH_COLOUR}" '
                     f'stroke-width="1" vector-effect="non-scaling-stroke" d="{_path_d(data, member, name)}"/>')
     for part in data["parts"]:
         if "guide" in part:
@@ -667,10 +755,11 @@ def _svg(data: dict[str, Any], member_index: int, frame: int) -> str:
         text.append(f'<text class="mech-arrow-label" data-arrow="{index}" data-kind="{arrow["kind"]}"{hidden} '
                     f'fill="{arrow["colour"]}" x="{num(tip[0] + 0.4 * size)}" y="{num(-tip[1] - 0.4 * size)}">'
                     f'{_subscripted(arrow["label"], font)}</text>')
-    label = html_text.escape(data["title"] or "mechanism")
-    return (f'<svg class="mech-still" xmlns="http://www.w3.org/2000/svg" role="img" aria-label="{label}" '
+    label = html_text.escape(data["title"] or "mechanism", quote=False)
+    desc = f"<desc>{html_text.escape(description, quote=False)}</desc>" if description else ""
+    return (f'<svg class="mech-still" xmlns="http://www.w3.org/2000/svg" role="img" '
             f'viewBox="{num(view[0])} {num(-view[1] - view[3])} {num(view[2])} {num(view[3])}" '
-            f'preserveAspectRatio="xMidYMid meet">'
+            f'preserveAspectRatio="xMidYMid meet"><title>{label}</title>{desc}'
             f'<g class="mech-world" transform="scale(1,-1)">{"".join(body)}</g>'
             f'<g class="mech-text" font-size="{num(font)}" font-family="sans-serif">{"".join(text)}</g></svg>')
 
