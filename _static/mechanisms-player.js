@@ -16,6 +16,15 @@
  *   still moves φ;
  * - the angle asked for is kept while the parameters move, so that passing through a member that assembles
  *   over less of the turn (or not at all) and coming back returns to it.
+ *
+ * For every reader (issue 32): every control is a native one, reached with Tab and worked by the keyboard
+ * (arrow keys, Home and End on the sliders, Space on the play button or on a slider plays and pauses); each
+ * slider is named with its unit and tells its value in that unit (aria-valuetext), not its position; the
+ * values (with the explorer's parameters) are announced by a polite live region once the reader stops
+ * changing them, or on pause, never
+ * frame by frame while it plays; with the system's "reduced motion" the player does not animate (no play
+ * button: the still and the sliders remain); the labels of the drawing are never smaller than 12 px on the
+ * screen (on a phone they grow as the drawing shrinks).
  */
 (function () {
   "use strict";
@@ -66,6 +75,12 @@
     return span;
   }
 
+  function plain(text) { return String(text).replace(/_/g, ""); }     // "v_B" as a screen reader should say it
+
+  var SETTLE = 400;                     // ms without a change before the values are announced
+  var LEGIBLE = 12;                     // px: the smallest size of a label of the drawing on the screen
+  var reducedMotion = window.matchMedia ? window.matchMedia("(prefers-reduced-motion: reduce)") : null;
+
   function Player(root) {
     var script = root.querySelector("script.mech-scene");
     this.root = root;
@@ -78,6 +93,8 @@
     this.empty = false;                 // the member shown assembles at no frame
     this.direction = 1;
     this.timer = null;
+    this.announcing = null;
+    this.reduced = Boolean(reducedMotion && reducedMotion.matches);
     this.build();
     this.setMember(this.member);
     root.classList.add("mech-ready");
@@ -92,16 +109,22 @@
   Player.prototype.build = function () {
     var d = this.data, self = this;
     var controls = element("div", { "class": "mech-controls" });
-    this.play = element("button", { "type": "button", "class": "mech-play", "aria-label": "play" }, "\u25B6 play");
+    this.play = element("button", { "type": "button", "class": "mech-play" });
+    this.playIcon = this.play.appendChild(element("span", { "class": "mech-play-icon", "aria-hidden": "true" }, "\u25B6"));
+    this.playText = this.play.appendChild(element("span", { "class": "mech-play-text" }, " play"));
     this.play.addEventListener("click", function () { self.toggle(); });
     controls.appendChild(this.play);
     var angle = element("label", { "class": "mech-slider" });
     angle.appendChild(element("span", { "class": "mech-slider-name" })).appendChild(label(d.angle));
     this.angle = element("input", { "type": "range", "class": "mech-angle", "min": "0",
-      "max": String(d.phi.length - 1), "step": "1", "aria-label": "crank angle " + d.angle });
-    this.angle.addEventListener("input", function () { self.stop(); self.turn(parseInt(self.angle.value, 10)); });
+      "max": String(d.phi.length - 1), "step": "1", "aria-label": "crank angle " + plain(d.angle) + ", in degrees" });
+    this.angle.addEventListener("input", function () {
+      self.stop(); self.turn(parseInt(self.angle.value, 10)); self.announceSoon();
+    });
     this.angle.addEventListener("change", function () {     // a value set without an input event
-      if (parseInt(self.angle.value, 10) !== self.frame) { self.stop(); self.turn(parseInt(self.angle.value, 10)); }
+      if (parseInt(self.angle.value, 10) !== self.frame) {
+        self.stop(); self.turn(parseInt(self.angle.value, 10)); self.announceSoon();
+      }
     });
     angle.appendChild(this.angle);
     controls.appendChild(angle);
@@ -111,9 +134,13 @@
       name.appendChild(label(p.label));
       box.appendChild(name);
       var input = element("input", { "type": "range", "class": "mech-parameter", "min": "0",
-        "max": String(p.values.length - 1), "step": "1", "data-name": p.name, "aria-label": p.label });
+        "max": String(p.values.length - 1), "step": "1", "data-name": p.name,
+        "aria-label": plain(p.label) + (p.name && p.name !== p.label ? " (" + p.name + ")" : "") +
+          (p.unit ? ", in " + p.unit : "") });
       var output = element("output", { "class": "mech-parameter-value", "data-name": p.name });
-      var moved = function () { if (self.memberIndex() !== self.member) self.setMember(self.memberIndex()); };
+      var moved = function () {
+        if (self.memberIndex() !== self.member) { self.setMember(self.memberIndex()); self.announceSoon(); }
+      };
       input.addEventListener("input", moved);
       input.addEventListener("change", moved);
       box.appendChild(input);
@@ -150,10 +177,23 @@
     this.message = stage.appendChild(element("div", { "class": "mech-message", "role": "status" }));
     this.readout = element("div", { "class": "mech-readout", "aria-live": "off" });
     this.notes = element("div", { "class": "mech-notes" });
+    // what a screen reader hears: the readout and the notes, once the reader has stopped changing them
+    this.live = element("div", { "class": "mech-live", "role": "status", "aria-live": "polite", "aria-atomic": "true" });
     var caption = this.root.querySelector(".mech-caption");
     this.root.insertBefore(controls, caption);
     this.root.insertBefore(this.readout, caption);
     this.root.insertBefore(this.notes, caption);
+    this.root.insertBefore(this.live, caption);
+    // Space plays and pauses from a slider too (a slider does nothing with it); the button has it natively
+    controls.addEventListener("keydown", function (event) {
+      if ((event.key === " " || event.key === "Spacebar") && event.target.type === "range") {
+        event.preventDefault();
+        self.toggle();
+      }
+    });
+    this.fitText();
+    if (window.ResizeObserver) new window.ResizeObserver(function () { self.fitText(); }).observe(this.svg);
+    else window.addEventListener("resize", function () { self.fitText(); });
     this.keys = d.keys;
     // the member shown first is the still's: set the parameter sliders to it
     var key = d.keys[this.member] || [];
@@ -189,6 +229,7 @@
     this.parameters.forEach(function (p) {
       var value = p.spec.values[parseInt(p.input.value, 10)];
       p.output.textContent = " = " + fmt(value, p.spec.digits) + (p.spec.unit ? " " + p.spec.unit : "");
+      p.input.setAttribute("aria-valuetext", fmt(value, p.spec.digits) + (p.spec.unit ? " " + p.spec.unit : ""));
     });
     this.svg.querySelectorAll(".mech-path").forEach(function (path) {
       path.setAttribute("d", self.pathData(path.getAttribute("data-point")));
@@ -219,6 +260,7 @@
     } else if (!full) {
       notes.push("assembles only for " + range);
     }
+    if (this.reduced) notes.push("not animated: the system asks for reduced motion; the sliders turn the crank");
     this.notes.textContent = "";
     this.notes.appendChild(rich(notes.concat(this.current.notes).join(" · ")));
     this.message.textContent = "";
@@ -262,11 +304,14 @@
     this.root.classList.toggle("mech-empty", this.empty);
     if (this.empty) this.stop();
     this.play.disabled = this.empty;
+    this.play.hidden = this.reduced;         // reduced motion: no animation, the still and the sliders remain
     if (this.empty) this.play.title = "this member assembles at no crank angle of the figure";
     else this.play.removeAttribute("title");
     if (!this.empty) frame = found;          // nothing to draw: the angle asked for, read out alone
     this.frame = frame;
     this.angle.value = String(frame);
+    var degrees = ((d.phi[frame] % 360) + 360) % 360;
+    this.angle.setAttribute("aria-valuetext", fmt(degrees, Number.isInteger(degrees) ? 0 : 1) + " degrees");
     if (!this.empty) this.draw(frame);
     this.readout.textContent = "";
     var items = [[d.angle, d.phi[frame], 0, "°"]];
@@ -336,9 +381,10 @@
 
   Player.prototype.start = function () {
     var self = this;
-    if (this.empty || this.timer) return;
-    this.play.textContent = "\u275A\u275A pause";
-    this.play.setAttribute("aria-label", "pause");
+    if (this.empty || this.timer || this.reduced) return;
+    this.playIcon.textContent = "\u275A\u275A";
+    this.playText.textContent = " pause";
+    window.clearTimeout(this.announcing);    // nothing is announced while it plays
     this.timer = window.setInterval(function () { self.step(); }, 80);
   };
 
@@ -346,8 +392,41 @@
     if (!this.timer) return;
     window.clearInterval(this.timer);
     this.timer = null;
-    this.play.textContent = "\u25B6 play";
-    this.play.setAttribute("aria-label", "play");
+    this.playIcon.textContent = "\u25B6";
+    this.playText.textContent = " play";
+    this.announceSoon();                      // paused: say where it stopped
+  };
+
+  Player.prototype.setReduced = function (reduced) {   // the system's "reduced motion" changed
+    this.reduced = reduced;
+    if (reduced) this.stop();
+    this.setMember(this.member);
+  };
+
+  Player.prototype.announceSoon = function () {   // the values, once they have stopped changing for SETTLE ms
+    var self = this;
+    window.clearTimeout(this.announcing);
+    this.announcing = window.setTimeout(function () {
+      var items = [].map.call(self.readout.querySelectorAll(".mech-item"), function (item) {
+        return item.textContent;
+      });
+      var settings = self.parameters.map(function (p) {   // the family member: each parameter's value
+        return plain(p.spec.label) + p.output.textContent;
+      });
+      var notes = self.notes.textContent, message = self.empty ? self.message.textContent : "";
+      self.live.textContent = [settings.join("; "), message || items.join("; "), notes].filter(Boolean).join(". ");
+    }, SETTLE);
+  };
+
+  Player.prototype.fitText = function () {   // the drawing's labels at least LEGIBLE px high on the screen
+    var box = this.svg.viewBox && this.svg.viewBox.baseVal, rect = this.svg.getBoundingClientRect();
+    if (!box || !box.width || !box.height || !rect.width || !rect.height) return;
+    var scale = Math.min(rect.width / box.width, rect.height / box.height);
+    this.svg.querySelectorAll(".mech-text").forEach(function (group) {
+      if (!group.hasAttribute("data-font-size")) group.setAttribute("data-font-size", group.getAttribute("font-size"));
+      var base = parseFloat(group.getAttribute("data-font-size"));
+      if (base > 0) group.setAttribute("font-size", String(Math.max(base, LEGIBLE / scale)));
+    });
   };
 
   Player.prototype.step = function () {
@@ -365,6 +444,16 @@
   };
 
   function start() {
+    if (reducedMotion && !start.listening) {
+      start.listening = true;
+      var changed = function () {
+        document.querySelectorAll("div.mech-player").forEach(function (root) {
+          if (root.mechPlayer) root.mechPlayer.setReduced(reducedMotion.matches);
+        });
+      };
+      if (reducedMotion.addEventListener) reducedMotion.addEventListener("change", changed);
+      else if (reducedMotion.addListener) reducedMotion.addListener(changed);
+    }
     document.querySelectorAll("div.mech-player").forEach(function (root) {
       if (root.classList.contains("mech-ready")) return;
       try {

@@ -26,19 +26,13 @@ __all__ = ["CouplerCurves", "coupler_curves"]
 
 
 class CouplerCurves(NamedTuple):
-    """The coupler curves of a family of four-bars (:func:`coupler_curves`).
-
-    Attributes
-    ----------
-    point : ndarray of complex, shape G + (N,)
-        The coupler point P = x + iy (m) of each member (leading axes) at each crank angle (last
-        axis); ``nan`` exactly where ``assembled`` is False.
-    assembled : ndarray of bool, shape G + (N,)
-        True where the member assembles at that crank angle (the coupler and rocker reach each other).
-    """
+    """The coupler curves of a family of four-bars (:func:`coupler_curves`): two arrays of shape G + (N,)."""
 
     point: np.ndarray
+    """The coupler point P = x + iy (m) of each member (leading axes) at each crank angle (last axis);
+    ``nan`` exactly where ``assembled`` is False."""
     assembled: np.ndarray
+    """True where the member assembles at that crank angle (the coupler and rocker reach each other)."""
 
 
 def _family(name: str, value: ArrayLike) -> np.ndarray:
