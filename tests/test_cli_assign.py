@@ -26,8 +26,8 @@ def test_assign_then_check_the_key(tmp_path):
     assert made.returncode == 0, made.stderr
     assert "crank-slider: 3 variants (s01 … s03), seed 2026" in made.stdout
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["key-tolerances.csv", "key.csv", "s01-answers.csv", "s01.html", "s01.md", "s01.png", "s02-answers.csv", "s02.html",
-                     "s02.md", "s02.png", "s03-answers.csv", "s03.html", "s03.md", "s03.png", "variants.json"]
+    assert names == ["key-tolerances.csv", "key.csv"] + [f"s0{i}{suffix}" for i in (1, 2, 3) for suffix in (
+        "-answers.csv", ".html", ".md", ".png", ".toml")] + ["variants.json"]
     checked = run("check", str(out / "key.csv"), str(out / "key.csv"), "--marks", str(tmp_path / "marks.csv"))
     assert checked.returncode == 0, checked.stderr
     assert "Class: 45 of 45 answers right (100 %)." in checked.stdout      # 3 students × 3 positions × 5
@@ -167,7 +167,7 @@ def test_the_course_page_shows_what_the_tool_does(tmp_path):
         names = archive.namelist()
     assert names == [f"s0{i}_{number}_assignfeedback_file/s0{i}{suffix}"
                      for i, number in ((1, 2318104), (2, 2318105), (3, 2318106))
-                     for suffix in (".html", "-answers.csv")]
+                     for suffix in (".html", "-answers.csv", ".toml")]
     # the worksheet the Moodle example writes, as the page shows it
     graded = re.search(r"```\{code-block\} text\n:caption: worksheet-graded.csv \(written by check\)\n\n(.*?)\n```",
                        page, flags=re.S).group(1)

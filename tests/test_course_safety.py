@@ -212,7 +212,7 @@ def test_sheets_escape_names_for_their_format(hostile):
         assert not re.search(r"(?<!\\)<", text.split("Name: ")[1].splitlines()[0])
     # the files are named by student ids only: nothing of the class list reaches a path
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        ["key-tolerances.csv", "key.csv", "variants.json"] + [f"{s}{x}" for s in PAYLOADS for x in (".html", ".md", ".png", "-answers.csv")])
+        ["key-tolerances.csv", "key.csv", "variants.json"] + [f"{s}{x}" for s in PAYLOADS for x in (".html", ".md", ".png", "-answers.csv", ".toml")])
     assert not (hostile.parent / "x").exists()
 
 

@@ -613,6 +613,21 @@ def variant_comments(task: Task, variant: Variant, seed: int | None) -> list[str
             "Asked at the crank angles phi_deg = " + ", ".join(repr(p) for p in variant.positions_deg) + "."]
 
 
+def linkage_text(task: Task, variant: Variant, seed: int | None) -> str | None:
+    """The variant as a linkage file (TOML), loadable by :func:`mechanisms.load_linkage`: for a linkage file's
+    assignment its own document, for a named mechanism its ``linkage_data()`` (the same linkage composed of
+    its groups); None for a mechanism that has neither."""
+    comments = variant_comments(task, variant, seed)
+    if task.document is not None:
+        return task.document(variant.mechanism, comments)
+    data = getattr(variant.mechanism, "linkage_data", None)
+    if data is None:
+        return None
+    from .variants import toml_text          # variants imports this module
+
+    return toml_text(data(), comments)
+
+
 def _identity(person: Person) -> dict[str, str]:
     return {"name": person.name, "email": person.email, "identifier": person.identifier}
 
@@ -669,7 +684,7 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     for variant in variants:
         png = drawing_png(variant)
         write_file(out / f"{variant.student}.png", png, "drawing")
-        document = task.document(variant.mechanism, variant_comments(task, variant, seed)) if task.document else None
+        document = linkage_text(task, variant, seed)
         if document is not None:
             path = out / f"{variant.student}.toml"
             write_file(path, document, "linkage file")
@@ -697,7 +712,7 @@ def write_assignment(task: Task | str, variants: Sequence[Variant], out: str | p
     _write_csv(tolerances_path(key), [c for c in columns if c not in IDENTITY_COLUMNS], tolerances, "tolerance file")
     written["tolerances"].append(tolerances_path(key))
     record = out / "variants.json"
-    records = [(v.record() if task.document is None else
+    records = [((v.record() | ({"file": f"{v.student}.toml"} if written["linkages"] else {})) if task.document is None else
                 {"student": v.student, "mechanism": task.name, "file": f"{v.student}.toml", "omega": v.omega,
                  "alpha": 0.0, "positions_deg": list(v.positions_deg)})
                | (_identity(who[v.student]) if who else {}) for v in variants]

@@ -116,6 +116,18 @@ class CrankSlider(Mechanism):
         ranges = assembly_ranges(self.crank, self.rod, self.offset)
         return [(-math.pi, math.pi)] if ranges is None else ranges
 
+    def linkage_data(self) -> dict:
+        """This crank-slider as the contents of a linkage file (:mod:`~mechanisms.linkages.linkage_file`).
+
+        The crank O → A, and an RRP dyad: the coupler A → B with the slider B on the guide y = e; the
+        dyad's branch is the class's (+1: B farther along +x than A). Loaded, it is the same linkage.
+        """
+        return {"name": "Crank-slider", "frame": {"O": [0.0, 0.0]},
+                "crank": {"pivot": "O", "pin": "A", "length": self.crank},
+                "dyad": [{"type": "RRP", "joint": "B", "from": "A", "length": self.rod,
+                          "guide": {"through": [0.0, self.offset], "angle_deg": 0.0}, "branch": self.branch,
+                          "links": ["coupler", "slider"]}]}
+
     def groups(self) -> tuple[Group, ...]:
         return (Crank("O", "A"), RRP("B", "A", "coupler", "slider", 0.0))
 

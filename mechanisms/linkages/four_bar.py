@@ -394,6 +394,18 @@ class FourBar(Mechanism):
         return FourBar(self.crank * factor, self.coupler * factor, self.rocker * factor,
                        (self.frame[0] * factor, self.frame[1] * factor), self.branch, self.keep_side)
 
+    def linkage_data(self) -> dict:
+        """This four-bar as the contents of a linkage file (:mod:`~mechanisms.linkages.linkage_file`).
+
+        The crank O → A and an RRR dyad: B at L₂ from A and L₃ from C, on the side σ of the directed line
+        A → C (the class's branch). Loaded, it is the same linkage (a file has no ``keep_side``: at a
+        change point it keeps the geometric side).
+        """
+        return {"name": "Four-bar", "frame": {"O": [0.0, 0.0], "C": [self.frame[0], self.frame[1]]},
+                "crank": {"pivot": "O", "pin": "A", "length": self.crank},
+                "dyad": [{"type": "RRR", "joint": "B", "from": ["A", "C"], "lengths": [self.coupler, self.rocker],
+                          "branch": self.branch, "links": ["coupler", "rocker"]}]}
+
     def groups(self) -> tuple[Group, ...]:
         return (Crank("O", "A"), RRR("B", "A", "C", "coupler", "rocker"))
 

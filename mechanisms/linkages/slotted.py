@@ -93,6 +93,19 @@ class SlottedLever(Mechanism):
         """The benchmark's oscillating lever: L₁ = 1 m, pivot C = (0, 2) m."""
         return cls(crank=1.0, pivot=(0.0, 2.0))
 
+    def linkage_data(self) -> dict:
+        """This slotted lever as the contents of a linkage file (:mod:`~mechanisms.linkages.linkage_file`).
+
+        The crank O → A and an RPR dyad: the block on the pin A slides along the lever through C, whose end
+        B is at the lever's length from C. Loaded, it is the same linkage (for a pivot on the crank
+        circle, where the block passes through the pivot, the class's own solution is the one to use).
+        """
+        return {"name": "Crank with a slotted lever",
+                "frame": {"O": [0.0, 0.0], "C": [self.pivot[0], self.pivot[1]]},
+                "crank": {"pivot": "O", "pin": "A", "length": self.crank},
+                "dyad": [{"type": "RPR", "block": "A", "pivot": "C", "joint": "B", "length": self.lever,
+                          "links": ["A", "lever"]}]}
+
     def groups(self) -> tuple[Group, ...]:
         return (Crank("O", "A"), RPR("A", "C", "lever"), LinkPoint("B", "lever"))
 
