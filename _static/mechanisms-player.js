@@ -100,8 +100,23 @@
     root.classList.add("mech-ready");
   }
 
+  // A point's stored positions, frame by frame (whole steps from the origin, null where it has none),
+  // from the scene's form: two numbers for a point that does not move; otherwise the first position
+  // the point has, then each next one as its difference from the one before (see scene.py).
+  function decoded(xy, frames) {
+    var out = [], x = 0, y = 0, k;
+    for (k = 0; k < frames; k++) {
+      var i = xy.length === 2 ? 0 : 2 * k;
+      if (xy[i] === null) { out.push(null, null); continue; }
+      if (xy.length === 2) { out.push(xy[0], xy[1]); continue; }
+      x += xy[i]; y += xy[i + 1];
+      out.push(x, y);
+    }
+    return out;
+  }
+
   Player.prototype.at = function (name, frame) {
-    var xy = this.current.xy[name], d = this.data;
+    var xy = this.positions[name], d = this.data;
     if (!xy || xy[2 * frame] === null) return null;
     return [d.origin[0] + d.step * xy[2 * frame], d.origin[1] + d.step * xy[2 * frame + 1]];
   };
@@ -226,6 +241,10 @@
     var d = this.data, self = this;
     this.member = index;
     this.current = d.members[index];
+    this.positions = {};
+    Object.keys(this.current.xy).forEach(function (name) {
+      self.positions[name] = decoded(self.current.xy[name], d.phi.length);
+    });
     this.parameters.forEach(function (p) {
       var value = p.spec.values[parseInt(p.input.value, 10)];
       p.output.textContent = " = " + fmt(value, p.spec.digits) + (p.spec.unit ? " " + p.spec.unit : "");

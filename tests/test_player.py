@@ -560,9 +560,17 @@ def test_the_site_has_explorers():
 def stored(data: dict, member: int, name: str, frame: int) -> tuple[float, float] | None:
     """A joint's position in the scene data (m), or None where the member has it not."""
     xy = data["members"][member]["xy"].get(name)
-    if xy is None or xy[2 * frame] is None:
+    if xy is None:
         return None
-    return data["origin"][0] + data["step"] * xy[2 * frame], data["origin"][1] + data["step"] * xy[2 * frame + 1]
+    if len(xy) == 2:                            # a point that does not move: stored once
+        x, y = xy
+    else:                                       # the first position, then differences frame to frame
+        x, y = (sum(v for v in xy[axis:2 * frame + 2:2] if v is not None) for axis in (0, 1))
+        if xy[2 * frame] is None:
+            return None
+    if x is None:
+        return None
+    return data["origin"][0] + data["step"] * x, data["origin"][1] + data["step"] * y
 
 
 def nearest_frames(valid: str, wanted: int) -> set[int]:

@@ -16,9 +16,9 @@ or a reader without JavaScript sees), the scene's data as JSON, and an ``<div cl
 that the player turns into a moving figure with a crank-angle slider, a slider per parameter, play
 and pause, toggles and a live readout. In a notebook a :class:`Scene` displays itself.
 
-Positions are stored as whole numbers of a step of 1/4000 of the figure's extent, vectors of 1/4000
-of the longest arrow, read-out values rounded to the digits the player prints: a scene of 72 frames
-weighs a few kilobytes a member.
+Positions are stored as whole numbers of a step of 1/4000 of the figure's extent (a point that does
+not move, once; a moving point as its steps from frame to frame), vectors of 1/4000 of the longest arrow, read-out values rounded to the digits the
+player prints: a scene of 72 frames weighs a few kilobytes a member.
 """
 
 from __future__ import annotations
@@ -211,7 +211,8 @@ class Scene:
         """A joint's stored positions (complex, m) over the frames of a member; nan where it does not assemble."""
         xy = self.data["members"][member]["xy"][joint]
         x0, y0, step = self.data["origin"][0], self.data["origin"][1], self.data["step"]
-        values = np.array([np.nan if v is None else v for v in xy], dtype=float).reshape(-1, 2)
+        values = np.array([(np.nan, np.nan) if v is None else v for v in _decoded(xy, len(self.data["phi"]))],
+                          dtype=float)
         return (x0 + step * values[:, 0]) + 1j * (y0 + step * values[:, 1])
 
 
@@ -564,7 +565,7 @@ def _layout(first: Mechanism, members: list[dict], phi: np.ndarray, paths: Seque
         data["members"].append({
             "valid": "".join("1" if v else "0" for v in m["valid"]),
             "intervals": [[round(math.degrees(a), 3), round(math.degrees(b), 3)] for a, b in m["intervals"]],
-            "xy": {name: _quantized(w, origin, step) for name, w in m["where"].items()},
+            "xy": {name: _encoded(_quantized(w, origin, step)) for name, w in m["where"].items()},
             "angles": {name: [None if not math.isfinite(v) else round(v, 5) for v in values]
                        for name, values in m["angles"].items() if name in _block_angles(first)},
             "guides": [[_round(g.through.real, step), _round(g.through.imag, step), round(g.angle, 6)]
@@ -603,6 +604,45 @@ def _quantized(values: np.ndarray, origin: tuple[float, float], step: float) -> 
             out += [int(round((z.real - origin[0]) / step)), int(round((z.imag - origin[1]) / step))]
         else:
             out += [None, None]
+    return out
+
+
+def _encoded(xy: list[int | None]) -> list[int | None]:
+    """A point's stored positions in their light form, which :func:`_decoded` reads back.
+
+    A point that does not move (a fixed pivot) is written once, as two numbers. Otherwise the first
+    position the point has is written, then each next one as its difference from the one before
+    (``None`` where the point has none): a point moves a few steps a frame, and small numbers are
+    short. Whole numbers, so the form loses nothing.
+    """
+    if len(xy) > 2 and xy == xy[:2] * (len(xy) // 2):
+        return xy[:2]
+    out: list[int | None] = []
+    x = y = 0
+    for k in range(0, len(xy), 2):
+        nx, ny = xy[k], xy[k + 1]
+        if nx is None or ny is None:
+            out += [None, None]
+            continue
+        out += [nx - x, ny - y]
+        x, y = nx, ny
+    return out
+
+
+def _decoded(xy: list[int | None], frames: int) -> list[tuple[int, int] | None]:
+    """The positions (whole steps from the origin) of a point at each frame, from :func:`_encoded`'s form."""
+    if len(xy) == 2:
+        pair = None if xy[0] is None or xy[1] is None else (xy[0], xy[1])
+        return [pair] * frames
+    out: list[tuple[int, int] | None] = []
+    x = y = 0
+    for k in range(frames):
+        dx, dy = xy[2 * k], xy[2 * k + 1]
+        if dx is None or dy is None:
+            out.append(None)
+            continue
+        x, y = x + dx, y + dy
+        out.append((x, y))
     return out
 
 
@@ -656,9 +696,10 @@ def _svg(data: dict[str, Any], member_index: int, frame: int, description: str =
 
     def at(name: str) -> tuple[float, float] | None:
         xy = member["xy"].get(name)
-        if xy is None or xy[2 * frame] is None:
+        stored = None if xy is None else _decoded(xy, len(data["phi"]))[frame]
+        if stored is None:
             return None
-        return x0 + step * xy[2 * frame], y0 + step * xy[2 * frame + 1]
+        return x0 + step * stored[0], y0 + step * stored[1]
 
     def num(v: float) -> str:
         return f"{v:.6g}"
@@ -782,11 +823,11 @@ def _path_d(data: dict[str, Any], member: dict[str, Any], name: str) -> str:
     xy = member["xy"].get(name, [])
     x0, y0, step = data["origin"][0], data["origin"][1], data["step"]
     out, pen = [], False
-    for k in range(len(xy) // 2):
-        if xy[2 * k] is None:
+    for stored in _decoded(xy, len(data["phi"])) if xy else []:
+        if stored is None:
             pen = False
             continue
-        out.append(f'{"L" if pen else "M"}{x0 + step * xy[2 * k]:.6g},{y0 + step * xy[2 * k + 1]:.6g}')
+        out.append(f'{"L" if pen else "M"}{x0 + step * stored[0]:.6g},{y0 + step * stored[1]:.6g}')
         pen = True
     full = all(v == "1" for v in member["valid"])
     return " ".join(out) + (" Z" if full and out else "")
