@@ -207,6 +207,17 @@ def test_panels_are_numbered_in_reading_order_with_their_place():
         < text.index("Curve second")
 
 
+def test_what_every_panel_shows_alike_is_said_once_before_the_panels():
+    fig, (left, right) = plt.subplots(1, 2)
+    for ax, label in ((left, "first"), (right, "second")):
+        add_description(ax, "the same crank at 30 degrees")
+        ax.plot([0, 1], [0, 1], label=label)
+    text = describe_figure(fig)
+    assert text.count("The same crank at 30 degrees.") == 1
+    assert text.index("In every panel: The same crank at 30 degrees.") < text.index("Panel 1 (left)") \
+        < text.index("Curve first") < text.index("Panel 2 (right)") < text.index("Curve second")
+
+
 def test_a_sentence_of_a_figure_function_comes_first_and_its_artists_are_not_repeated():
     fig, ax = plt.subplots()
     line, = ax.plot([0.0, 1.0, 2.0], [0.0, 1.0, 0.0])

@@ -367,6 +367,11 @@ def describe_axes(ax: Axes) -> str:
     str
         Sentences; empty for a panel with nothing on it.
     """
+    return " ".join(_panel_parts(ax))
+
+
+def _panel_parts(ax: Axes) -> list[str]:
+    """:func:`describe_axes`'s sentences, one item per thing described (the first says what the panel is)."""
     covered = _covered(ax)
     drawing = _is_drawing(ax)
     xname, xunit = _label_parts(_axis_label(ax, "x"))
@@ -378,7 +383,7 @@ def describe_axes(ax: Axes) -> str:
     words, annotated_arrows = _words(ax, covered)
     sentences = _sentences(ax)
     if not (sentences or lines or others or words):
-        return ""
+        return []
     if drawing:
         kind = "A drawing to scale"
         if xname == yname and xunit == yunit and xname:
@@ -409,7 +414,7 @@ def describe_axes(ax: Axes) -> str:
     key = _key(ax, covered)
     if key:
         parts.append(_sentence("Key: " + "; ".join(key)))
-    return " ".join(parts)
+    return parts
 
 
 def _position_words(axes: list[Axes]) -> list[str]:
@@ -443,8 +448,12 @@ def describe_figure(fig: Figure) -> str:
         The description; ``""`` for a figure with nothing on it.
     """
     axes = [ax for ax in fig.get_axes() if ax.get_visible()]
-    panels = [(ax, describe_axes(ax)) for ax in axes]
-    panels = [(ax, text) for ax, text in panels if text]
+    described = [(ax, _panel_parts(ax)) for ax in axes]
+    described = [(ax, parts) for ax, parts in described if parts]
+    # what every panel shows alike (the same mechanism in the same position) is said once, before them
+    common = [part for part in described[0][1][1:] if all(part in parts[1:] for _, parts in described)] \
+        if len(described) > 1 else []
+    panels = [(ax, " ".join(part for part in parts if part not in common)) for ax, parts in described]
     suptitle = getattr(fig, "_suptitle", None)
     head = plain_text(suptitle.get_text()) if suptitle is not None else ""
     legends = [plain_text(t.get_text()) for legend in fig.legends for t in legend.get_texts()]
@@ -457,6 +466,8 @@ def describe_figure(fig: Figure) -> str:
     ordered = sorted(zip(panels, where), key=lambda item: (-round(item[0][0].get_position().y1, 2),
                                                             round(item[0][0].get_position().x0, 2)))
     text = [_sentence(head) if head else "", f"{len(panels)} panels."]
+    if common:
+        text.append("In every panel: " + " ".join(common))
     for number, ((ax, description), place) in enumerate(ordered, 1):
         text.append(f"Panel {number}{' (' + place + ')' if place else ''}: {description}")
     text.append(tail)
