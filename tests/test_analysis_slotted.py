@@ -59,7 +59,7 @@ def test_shaper_stroke_by_simulation(distance, rod, branch):
     lever = 1.2 * (distance * r + r)
     m = mech.Shaper(r, (0.0, -distance * r), lever, rod * lever, -distance * r + lever, branch)
     result = shaper_stroke(m)
-    x = m.solve(FINE, 1.0, order=0).point("D").x
+    x = m.solve(FINE, 1.0, order=0).point("G").x
     # the grid's extremes fall short of the true ones by O(Δφ²) only, and never exceed them
     assert result.stroke == pytest.approx(np.ptp(x), abs=1e-6 * lever) and np.ptp(x) <= result.stroke + 1e-12
     np.testing.assert_allclose(sorted(result.positions), [x.min(), x.max()], atol=1e-6 * lever)

@@ -134,8 +134,8 @@ def test_plan_mode_reads_tolerances_off_a_drawing(tmp_path):
     tolerances = list(csv.DictReader((out / "key-tolerances.csv").open(encoding="utf-8")))
     for row, tol in zip(key, tolerances):
         # chapter 10: 1 mm of a plan within 100 mm is at least 1 % of its largest vector; 3 % relative
-        assert float(tol["D.vx"]) >= 0.03 * abs(float(row["D.vx"]))
-        assert float(tol["D.vx"]) >= 0.01 * math.hypot(float(row["D.vx"]), float(row["D.vy"])) * 0.999
+        assert float(tol["G.vx"]) >= 0.03 * abs(float(row["G.vx"]))
+        assert float(tol["G.vx"]) >= 0.01 * math.hypot(float(row["G.vx"]), float(row["G.vy"])) * 0.999
     assert "3 %, at least 1 mm of the drawing" in (out / "s01.md").read_text(encoding="utf-8")
 
 

@@ -45,14 +45,14 @@ def test_lambda_text_and_csv(capsys):
     args = ["table", "lambda", "--crank", "2", "--half-coupler", "6.5", "--ground", "5", "--omega", "1"]
     status, out, _ = run(args + ["--positions", "12"], capsys)
     assert status == 0 and out.startswith("lambda: crank = 2 m, half_coupler = 6.5 m, ground = 5 m")
-    assert "point B" in out and "point D" in out
+    assert "point P" in out and "point C" in out          # the book's letters (§4.9): coupler end P, pivot C
     status, out, _ = run(args + ["--positions", "4", "--format", "csv", "--point", "M=coupler:6.5"], capsys)
     rows = list(csv.DictReader(io.StringIO(out)))
     assert len(rows) == 4
     sol = LambdaMechanism(2.0, 6.5, 5.0).solve(np.radians([0.0, 90.0, 180.0, 270.0]), omega=1.0)
-    # a point at u = b on the coupler is the joint C (by definition of the mechanism)
-    assert np.allclose([float(r["M.x"]) for r in rows], sol.point("C").x)
-    assert np.allclose([float(r["B.y"]) for r in rows], sol.point("B").y)
+    # a point at u = b on the coupler is the joint B (by definition of the mechanism)
+    assert np.allclose([float(r["M.x"]) for r in rows], sol.point("B").x)
+    assert np.allclose([float(r["P.y"]) for r in rows], sol.point("P").y)
 
 
 def test_assembly_error_is_reported(capsys):

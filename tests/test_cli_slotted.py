@@ -70,15 +70,15 @@ def test_bad_inputs(capsys):
 
 def test_other_slotted_mechanisms(capsys):
     # Shaper at φ = 90°: A = (0, 0.1) right above C = (0, −0.4), so the lever is vertical and B = (0, 0.2); the rod
-    # of 0.15 m reaches the guide y = 0.22 at x_D = √(0.15² − 0.02²) (hand).
+    # of 0.15 m reaches the guide y = 0.22 at x_G = √(0.15² − 0.02²) (hand).
     status, out, _ = run(capsys, ["table", "shaper", "--crank", "0.1", "--pivot", "0,-0.4", "--lever", "0.6",
                                   "--rod", "0.15", "--ram-height", "0.22", "--omega", "6", "--angles", "90:91:1",
                                   "--format", "json"])
     assert status == 0
     row = json.loads(out)["rows"][0]
-    assert row["sliders"]["D"]["s"] == pytest.approx(math.sqrt(0.15**2 - 0.02**2), abs=1e-15)
+    assert row["sliders"]["G"]["s"] == pytest.approx(math.sqrt(0.15**2 - 0.02**2), abs=1e-15)
     assert row["links"]["lever"]["angle_deg"] == pytest.approx(90.0, abs=1e-12)
-    assert set(row["sliders"]) == {"A", "D"} and "coriolis" in row["sliders"]["A"]
+    assert set(row["sliders"]) == {"A", "G"} and "coriolis" in row["sliders"]["A"]
     # Rocker in a block (source 002, r = 2, block at (0, 2) = on the crank circle): ω = ω1/2 (hand)
     status, out, _ = run(capsys, ["table", "rocker-in-block", "--crank", "2", "--pivot", "0,2", "--omega", "0.5",
                                   "--positions", "8", "--format", "json"])
@@ -90,7 +90,7 @@ def test_other_slotted_mechanisms(capsys):
 
 
 def test_slider_on_coupler_takes_its_guide_angle_in_degrees(capsys):
-    # expected by hand: L is where the coupler's line A → B meets the guide through (0.2, 0.1) at 60°,
+    # expected by hand: the block E is where the coupler's line A → B meets the guide through (0.2, 0.1) at 60°,
     # with A = r e^{iφ}, B = (r cos φ + √(L² − r² sin² φ), 0) (offset 0)
     args = ["table", "slider-on-coupler", "--crank", "0.08", "--rod", "0.3", "--guide-point", "0.2,0.1",
             "--guide-angle", "60", "--omega", "10", "--positions", "4", "--format", "json"]
@@ -108,6 +108,6 @@ def test_slider_on_coupler_takes_its_guide_angle_in_degrees(capsys):
         det = d.real * (-u.imag) - d.imag * (-u.real)
         t = ((g - a).real * (-u.imag) - (g - a).imag * (-u.real)) / det
         expected = a + t * d
-        point = row["points"]["L"]
+        point = row["points"]["E"]
         assert point["x"] == pytest.approx(expected.real, abs=1e-14)
         assert point["y"] == pytest.approx(expected.imag, abs=1e-14)

@@ -55,10 +55,10 @@ def composed_pairs():
                                   RRP("B", "A", "coupler", "B", 0.0, 3.5, branch, 0.5j)]),
                (["coupler"], ["A", "B"], ["B"]))
     yield (mech.LambdaMechanism(crank=2.0, half_coupler=6.5, ground=5.0),
-           Linkage({"O": 0, "D": -5}, [Crank("O", "A", length=2.0),
-                                       RRR("C", "A", "D", "coupler", "rocker", 6.5, 6.5, -1),
-                                       LinkPoint("B", "coupler", 13.0)]),
-           (["coupler", "rocker"], ["A", "B", "C"], []))
+           Linkage({"O": 0, "C": -5}, [Crank("O", "A", length=2.0),
+                                       RRR("B", "A", "C", "coupler", "rocker", 6.5, 6.5, -1),
+                                       LinkPoint("P", "coupler", 13.0)]),
+           (["coupler", "rocker"], ["A", "B", "P"], []))
     yield (mech.SlottedLever(crank=1.0, pivot=(0.0, 2.0)),
            Linkage({"O": 0, "C": 2j}, [Crank("O", "A", length=1.0),
                                        RPR("A", "C", "lever", "A", joint="B", length=3.0)]),
@@ -67,21 +67,21 @@ def composed_pairs():
            Linkage({"O": 0, "C": 0.5 + 0.3j}, [Crank("O", "A", length=2.0), RPR("A", "C", "lever", "A")]),
            (["lever"], ["A"], ["A"]))
     yield (mech.Shaper.example(), load_linkage("shaper"),
-           (["lever", "rod"], ["A", "B", "D"], [("A", "block"), ("D", "ram")]))
+           (["lever", "rod"], ["A", "B", "G"], [("A", "block"), ("G", "ram")]))
     yield (mech.RockerInBlock.example(),
-           Linkage({"O": 0, "B": 4j}, [Crank("O", "A", length=2.0), RPR("B", "A", "rocker", "B")]),
-           (["rocker"], ["A"], ["B"]))
+           Linkage({"O": 0, "C": 4j}, [Crank("O", "A", length=2.0), RPR("C", "A", "rocker", "C")]),
+           (["rocker"], ["A"], ["C"]))
     m = mech.SlottedRockers.example()
-    yield (m, Linkage({"O": 0, "O1": complex(*m.pivot), "O2": complex(*m.rocker_pivot)},
-                      [Crank("O", "A", length=m.crank), RPR("A", "O1", "lever", "A"),
+    yield (m, Linkage({"O": 0, "C": complex(*m.pivot), "O2": complex(*m.rocker_pivot)},
+                      [Crank("O", "A", length=m.crank), RPR("A", "C", "lever", "A"),
                        RRP("D", "O2", "rocker", "D", 0.0, m.rocker, m.branch, 0j, "lever")]),
            (["lever", "rocker"], ["A", "D"], ["A", "D"]))
     m = mech.SliderOnCoupler.example()
     yield (m, Linkage({"O": 0}, [Crank("O", "A", length=m.crank),
                                  RRP("B", "A", "coupler", "B", 0.0, m.rod, 1, 1j * m.offset),
-                                 PRP("L", Line("coupler", 0j, 0.0), Line("frame", complex(*m.guide_point), m.guide_angle),
-                                     "L_coupler", "L")]),
-           (["coupler"], ["A", "B", "L"], ["B", "L", "L_coupler"]))
+                                 PRP("E", Line("coupler", 0j, 0.0), Line("frame", complex(*m.guide_point), m.guide_angle),
+                                     "E_coupler", "E")]),
+           (["coupler"], ["A", "B", "E"], ["B", "E", "E_coupler"]))
 
 
 @pytest.mark.parametrize("pair", list(composed_pairs()), ids=lambda p: repr(p[0])[:40])

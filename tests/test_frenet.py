@@ -158,12 +158,12 @@ def test_trajectory_of_rho_equal_l_is_the_guide_line():
 
 
 def test_trajectory_of_rho_equal_b_on_the_lambda_mechanism_is_a_circle():
-    # ρ = b: the joint C, on the circle of radius b about the rocker pivot D = (−d, 0)
+    # ρ = b: the joint B, on the circle of radius b about the rocker pivot C = (−d, 0)
     r, b, d = 2.0, 6.5, 5.0
     law = frenet.rotation_law(mech.LambdaMechanism(r, b, d), turn, omega=1.0)
     point = law.point(b)
     assert np.allclose(np.abs(point.position + d), b, atol=1e-12)
-    # a point on a circle about a fixed centre moves along the circle: v ⊥ (C − D)
+    # a point on a circle about a fixed centre moves along the circle: v ⊥ (B − C)
     assert np.allclose(np.real(np.conj(point.position + d) * point.velocity), 0.0, atol=1e-10)
 
 

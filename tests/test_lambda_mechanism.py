@@ -19,54 +19,64 @@ def test_against_the_generic_solver():
     assert constraint_residual(m, sol) < 1e-13 and distance_deviation(m, sol) < 1e-13
 
 
-def test_b_is_the_far_end_of_the_coupler_and_c_lies_above():
+def test_the_book_letters_the_joints_o_a_b_p_c():
+    # expected: chapter 4, §4.9 letters the lambda mechanism O, A, B (rocker joint), P (coupler end), C (rocker
+    # pivot); the package's names are those letters (the source's B, C, D are P, B, C)
+    m = LambdaMechanism(2.0, 6.5, 5.0)
+    sol = m.solve(np.radians([20.0]), order=0)
+    assert set(sol.point_names) == {"O", "A", "B", "P", "C"}
+    assert sol.point("C").value[0] == -5.0 + 0j                       # the rocker's pivot at (−d, 0)
+    assert m.links == {"crank": "O", "coupler": "A", "rocker": "C"}
+
+
+def test_p_is_the_far_end_of_the_coupler_and_b_lies_above():
     m = LambdaMechanism(2.0, 6.5, 5.0)
     phi = np.radians(np.arange(0.0, 360.0, 15.0))
     sol = m.solve(phi, omega=1.0)
-    a, c, b = (sol.point(n).value for n in "ACB")
-    assert np.allclose(b, 2 * c - a)                                  # C the midpoint, by definition
-    assert np.allclose(np.abs(c + 5.0), 6.5) and np.all(c.imag > 0)   # on the rocker, above the frame line
-    assert np.allclose(sol.point("B").velocity, 2 * sol.point("C").velocity - sol.point("A").velocity)
+    a, b, p = (sol.point(n).value for n in "ABP")
+    assert np.allclose(p, 2 * b - a)                                  # B the midpoint, by definition
+    assert np.allclose(np.abs(b + 5.0), 6.5) and np.all(b.imag > 0)   # on the rocker, above the frame line
+    assert np.allclose(sol.point("P").velocity, 2 * sol.point("B").velocity - sol.point("A").velocity)
 
 
-def test_trajectory_of_b_is_symmetric_about_the_vertical_through_d():
+def test_trajectory_of_p_is_symmetric_about_the_vertical_through_c():
     m = LambdaMechanism(2.0, 6.5, 5.0)
     phi = np.radians(np.arange(0.0, 180.0, 5.0))
-    b_plus = m.solve(phi, order=0).point("B").value
-    b_minus = m.solve(-phi, order=0).point("B").value
-    # expected: the mirror image in x = −d (A, D, B lie on a circle about C with AB a diameter)
-    assert np.allclose(b_minus, -2 * 5.0 - np.conj(b_plus).real + 1j * b_plus.imag)
+    p_plus = m.solve(phi, order=0).point("P").value
+    p_minus = m.solve(-phi, order=0).point("P").value
+    # expected: the mirror image in x = −d (A, C, P lie on a circle about B with AP a diameter)
+    assert np.allclose(p_minus, -2 * 5.0 - np.conj(p_plus).real + 1j * p_plus.imag)
 
 
-def test_straight_part_of_b():
+def test_straight_part_of_p():
     m = LambdaMechanism(2.0, 6.5, 5.0)
     phi = np.radians(np.arange(-180.0, 180.01, 0.25))
-    b = m.solve(phi, order=0).point("B").value
-    part = straight_part(phi, b, 720, 0.01)
+    p = m.solve(phi, order=0).point("P").value
+    part = straight_part(phi, p, 720, 0.01)
     # expected: the best line is horizontal (the symmetry above), the part is symmetric about
     # φ = 0, and a brute-force check of the deviation from the horizontal through the mean
     assert abs(part.direction.imag) < 1e-9
     assert part.phi[0] == pytest.approx(-part.phi[1])
-    inside = b[np.abs(phi) <= part.phi[1] + 1e-12]
+    inside = p[np.abs(phi) <= part.phi[1] + 1e-12]
     assert np.max(np.abs(inside.imag - inside.imag.mean())) == pytest.approx(part.deviation, rel=1e-9)
     assert part.length == pytest.approx(np.ptp(inside.real), rel=1e-9)
     assert part.length > 7.5 and np.degrees(part.phi[1]) > 70.0    # more than 1/3 of a turn
 
 
 def test_drop_shaped_curve_at_the_change_point():
-    # d = 11 = 2b − r: a change point at φ = 0 (A, C, D in line)
+    # d = 11 = 2b − r: a change point at φ = 0 (A, B, C in line)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SingularPositionWarning)
         drop = LambdaMechanism(2.0, 6.5, 11.0, keep_side=True).solve(np.radians(np.arange(-180.0, 181.0, 1.0)))
         smooth = LambdaMechanism(2.0, 6.5, 11.0).solve(np.radians(np.arange(-180.0, 181.0, 1.0)))
-    b = drop.point("B").value
-    # by hand at φ = 0: A = (2, 0), C = (−4.5, 0), B = (−11, 0): the tip of the drop at D
-    assert abs(b[180] - (-11.0)) < 1e-6
-    assert np.all(drop.point("C").value.imag >= -1e-9)                 # keeps its side
+    p = drop.point("P").value
+    # by hand at φ = 0: A = (2, 0), B = (−4.5, 0), P = (−11, 0): the tip of the drop at C
+    assert abs(p[180] - (-11.0)) < 1e-6
+    assert np.all(drop.point("B").value.imag >= -1e-9)                 # keeps its side
     assert drop.singular[180] and smooth.singular[180]
-    # the smooth continuation passes into the mirror assembly: C above after φ = 0 (the stretch
+    # the smooth continuation passes into the mirror assembly: B above after φ = 0 (the stretch
     # of crank angles that holds the branch), below before it
-    assert np.all(smooth.point("C").value[181:].imag > 0) and np.all(smooth.point("C").value[:180].imag < 0)
+    assert np.all(smooth.point("B").value[181:].imag > 0) and np.all(smooth.point("B").value[:180].imag < 0)
 
 
 def test_errors():

@@ -267,17 +267,17 @@ def test_shaper_plans_equal_the_closed_form_and_the_generic_solver():
     m = mech.Shaper(crank=0.1, pivot=(0.0, -0.4), lever=0.6, rod=0.15, ram_height=0.22)   # chapter 5's shaper
     phi = np.radians(np.arange(5.0, 360.0, 30.0))
     sol = m.solve(phi, omega=10.0, alpha=2.0)
-    generic = mech.verify.solve_generic(m, phi, omega=10.0, alpha=2.0)       # q = (ξ, L, ψ, x_D)
+    generic = mech.verify.solve_generic(m, phi, omega=10.0, alpha=2.0)       # q = (ξ, L, ψ, x_G)
     for k in range(len(phi)):
         vp = plans.velocity_plan(m, sol, index=k)
         ap = plans.acceleration_plan(m, sol, index=k, velocity=vp)
         assert vp.closure() < 1e-12 and ap.closure() < 1e-10
         assert vp.rates["lever"] == pytest.approx(generic.q_t[0, k], rel=1e-9, abs=1e-10)
         assert vp.rates["rod"] == pytest.approx(generic.q_t[2, k], rel=1e-9, abs=1e-10)
-        assert vp.of("D").real == pytest.approx(generic.q_t[3, k], rel=1e-9, abs=1e-10)
+        assert vp.of("G").real == pytest.approx(generic.q_t[3, k], rel=1e-9, abs=1e-10)
         assert ap.rates["lever"] == pytest.approx(generic.q_tt[0, k], rel=1e-8, abs=1e-8)
         assert ap.rates["rod"] == pytest.approx(generic.q_tt[2, k], rel=1e-8, abs=1e-8)
-        assert ap.of("D").real == pytest.approx(generic.q_tt[3, k], rel=1e-8, abs=1e-8)
+        assert ap.of("G").real == pytest.approx(generic.q_tt[3, k], rel=1e-8, abs=1e-8)
         assert abs(vp.vector("v_A2A3").value) == pytest.approx(abs(generic.q_t[1, k]), rel=1e-9, abs=1e-10)
 
 

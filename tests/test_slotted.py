@@ -168,7 +168,7 @@ def test_two_rockers_lecture_formulas():
     # Lecture "two rockers with a slotted pair" (checked by hand, correct as printed):
     # x_K = 0.5(n − b) sin 2ξ + m cos²ξ + a sin²ξ, (x_t)_K = ξ_t[(n − b) cos 2ξ + (a − m) sin 2ξ],
     # (x_tt)_K = ξ_tt[…] + 2ξ_t²[(a − m) cos 2ξ + (b − n) sin 2ξ], y_K = b + tg ξ (x_K − a), and the current length
-    # O1D from the intersection of the lines O1B (angle ξ) and O2D (angle θ).
+    # CD (the lecture's O1D) from the intersection of the lines CB (angle ξ) and O2D (angle θ).
     a, b, m_, n = 0.0, 0.3, 0.15, 0.4
     mech_ = mech.SlottedRockers(0.1, (a, b), (m_, n), 0.3)
     sol = mech_.solve(PHI, 8.0, 0.0)
@@ -244,8 +244,8 @@ def test_drawing_every_mechanism():
 @settings(max_examples=20, deadline=None)
 @given(geometry=slotted_lever_geometries(), omega=st.floats(-20, 20, **finite), alpha=st.floats(-50, 50, **finite))
 def test_rocker_in_block_against_generic_solver_and_coriolis(geometry, omega, alpha):
-    # expected: the generic solver on A(φ) + t·exp(iψ) − B = 0; and, since the block's centre B is fixed, the
-    # acceleration of the rocker's point at B, (a_A + (iε − ω²)(B − A)), the relative t_tt·exp(iψ) and the Coriolis
+    # expected: the generic solver on A(φ) + t·exp(iψ) − C = 0; and, since the block's centre C is fixed, the
+    # acceleration of the rocker's point at C, (a_A + (iε − ω²)(C − A)), the relative t_tt·exp(iψ) and the Coriolis
     # term 2ω t_t·i·exp(iψ) must add up to zero (composition of accelerations).
     r, pivot = geometry
     m = mech.RockerInBlock(r, pivot)
@@ -259,7 +259,7 @@ def test_rocker_in_block_against_generic_solver_and_coriolis(geometry, omega, al
     psi, a = sol.angle("rocker"), sol.point("A")
     e = np.exp(1j * psi.value)
     total = (a.acceleration + (1j * psi.alpha - psi.omega**2) * (complex(*pivot) - a.value)
-             + sol.slider("B").acceleration * e + sol.extras["B"]["coriolis"] * 1j * e)
+             + sol.slider("C").acceleration * e + sol.extras["C"]["coriolis"] * 1j * e)
     np.testing.assert_allclose(total, 0.0, atol=1e-10 * (1 + omega**2 + abs(alpha)) * (1 + r) * gain)
 
 
@@ -275,16 +275,16 @@ def test_rocker_in_block_source_002_special_case():
 
 def test_slider_on_coupler_guide_angle():
     # μ from sin μ = h/L2 (lecture) equals −ψ, the coupler angle of the circle–line block (another method),
-    # for the slider on the right of the crank pin; and L lies on both lines (hand: cross products vanish).
+    # for the slider on the right of the crank pin; and the block E lies on both lines (hand: cross products vanish).
     m = mech.SliderOnCoupler(0.08, 0.3, (0.2, 0.0), np.radians(70.0))
     sol = m.solve(PHI, 10.0, 3.0)
     mu, psi = m.guide_angle_of_coupler(sol), sol.angle("coupler")
     np.testing.assert_allclose(mu.value, -psi.value, atol=1e-15)
     np.testing.assert_allclose(mu.omega, -psi.omega, atol=1e-12)
     np.testing.assert_allclose(mu.alpha, -psi.alpha, atol=1e-10)
-    L, A = sol.point("L").value, sol.point("A").value
-    np.testing.assert_allclose(np.imag(np.conj(np.exp(1j * psi.value)) * (L - A)), 0.0, atol=1e-15)
-    np.testing.assert_allclose(np.imag(np.exp(-1j * np.radians(70.0)) * (L - 0.2)), 0.0, atol=1e-15)
+    E, A = sol.point("E").value, sol.point("A").value
+    np.testing.assert_allclose(np.imag(np.conj(np.exp(1j * psi.value)) * (E - A)), 0.0, atol=1e-15)
+    np.testing.assert_allclose(np.imag(np.exp(-1j * np.radians(70.0)) * (E - 0.2)), 0.0, atol=1e-15)
 
 
 @pytest.mark.parametrize("m", [mech.SlottedLever(0.1, (0, 0.3)), mech.SlottedLever(0.1, (0, 0.1)),

@@ -37,10 +37,10 @@ def _stencil(mechanism, read):
 CASES = {
     # the block E of §5.7: on the coupler A → B (angle ψ), s = |AE| along it
     "slider on a coupler": (mech.SliderOnCoupler(crank=0.08, rod=0.3, guide_point=(0.2, 0.0),
-                                                 guide_angle=np.radians(70.0)), "A", "coupler", "L_coupler", "L"),
-    # the pin D of §5.8: in the lever's slot (angle ξ about C = joint O1), s = |CD|
+                                                 guide_angle=np.radians(70.0)), "A", "coupler", "E_coupler", "E"),
+    # the pin D of §5.8: in the lever's slot (angle ξ about C), s = |CD|
     "two rockers": (mech.SlottedRockers(crank=0.1, pivot=(0.0, 0.3), rocker_pivot=(0.12, 0.38), rocker=0.2),
-                    "O1", "lever", "D", "D"),
+                    "C", "lever", "D", "D"),
     # the block A of §5.3, on the lever of §5.1
     "slotted lever": (mech.SlottedLever(crank=0.1, pivot=(0.0, 0.25)), "C", "lever", "A", "A"),
 }

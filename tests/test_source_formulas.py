@@ -477,8 +477,9 @@ def test_zaitsev_evgrafov_design_formulas_by_simulation():
 def test_lambda_mechanism_joint_c_18_to_20(r, b, d):
     # (17) x_A = r cos ψ, y_A = r sin ψ; (18) x_C = r cos ψ − b cos γ, y_C = r sin ψ + b sin γ; (19) x_C = −d + b cos ε,
     # y_C = b sin ε; (20) the two equal; (5) y_A = (1/k) sin ks with r = 1/k and ψ = ks.
-    # Expected: the lambda mechanism's joint C from the four-bar closed form (tested against the generic solver in
-    # tests/test_lambda_mechanism.py); γ from the printed (21) via mechanisms.analysis.frenet.lambda_mechanism_gamma.
+    # Expected: the lambda mechanism's joint B (the source's C) from the four-bar closed form (tested against the
+    # generic solver in tests/test_lambda_mechanism.py); γ from the printed (21) via
+    # mechanisms.analysis.frenet.lambda_mechanism_gamma.
     psi = np.radians(np.arange(5.0, 360.0, 15.0))
     sol = mech.LambdaMechanism(r, b, d).solve(psi, order=0)
     gamma = frenet.lambda_mechanism_gamma(psi, r, b, d)
@@ -486,7 +487,7 @@ def test_lambda_mechanism_joint_c_18_to_20(r, b, d):
     np.testing.assert_allclose(sol.point("A").value, r * np.cos(psi) + 1j * r * np.sin(psi), atol=1e-13)
     np.testing.assert_allclose(sol.point("A").value.imag, np.sin(k * (r * psi)) / k, atol=1e-13)
     x_c, y_c = r * np.cos(psi) - b * np.cos(gamma), r * np.sin(psi) + b * np.sin(gamma)
-    np.testing.assert_allclose(x_c + 1j * y_c, sol.point("C").value, atol=1e-9)
+    np.testing.assert_allclose(x_c + 1j * y_c, sol.point("B").value, atol=1e-9)       # the source's C is B
     eps = np.arctan2(y_c, x_c + d)              # (19) solved for ε
     np.testing.assert_allclose(-d + b * np.cos(eps) + 1j * b * np.sin(eps), x_c + 1j * y_c, atol=1e-9)   # (19), (20)
     assert np.max(np.abs((r * np.cos(psi) + b * np.cos(gamma)) - x_c)) > 1.0   # the sign in (18) matters

@@ -110,7 +110,7 @@ class ShaperStroke:
     Attributes
     ----------
     positions : tuple of float
-        The ram's abscissa (m; the book's x_G, the package's joint D) at the lever's two extremes (same order as
+        The ram's abscissa x_G (m; of the joint G) at the lever's two extremes (same order as
         :class:`LimitPositions`).
     stroke : float
         H, the distance between the two (m).

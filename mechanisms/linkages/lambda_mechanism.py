@@ -1,9 +1,10 @@
 """Layer 3: Chebyshev's lambda mechanism (Pylypaka and Chepizhnyi, 2019, problem 4), chapter 4.
 
 A four-bar whose coupler is extended beyond the rocker joint: crank O → A of length r about
-O = (0, 0); coupler A → B of length 2b; rocker D → C of length b about D = (−d, 0), hinged to
-the coupler at its midpoint C (AC = CB = DC = b). The point B traces a curve with a nearly
-straight part: the lambda mechanism is a straight-line guide.
+O = (0, 0); coupler A → P of length 2b; rocker C → B of length b about C = (−d, 0), hinged to
+the coupler at its midpoint B (AB = BP = CB = b). The point P traces a curve with a nearly
+straight part: the lambda mechanism is a straight-line guide. The joints carry the book's letters
+(chapter 4, §4.9); the source's B, C, D are the book's P, B, C.
 """
 
 from __future__ import annotations
@@ -23,35 +24,35 @@ __all__ = ["LambdaMechanism"]
 
 
 class LambdaMechanism(Mechanism):
-    """Chebyshev's lambda mechanism: crank r, coupler A→B of length 2b, rocker D→C of length b.
+    """Chebyshev's lambda mechanism: crank r, coupler A→P of length 2b, rocker C→B of length b.
 
     Parameters
     ----------
     crank : float
         Crank length r = OA (m).
     half_coupler : float
-        b = AC = CB = DC (m): half the coupler, and the rocker.
+        b = AB = BP = CB (m): half the coupler, and the rocker (the book's L₂ = L₃).
     ground : float
-        d (m): the rocker pivot D is at (−d, 0).
+        d (m): the rocker pivot C is at (−d, 0).
     branch : int
-        Side of the directed line A → D on which C lies: −1 (default) puts C above the frame
+        Side of the directed line A → C on which B lies: −1 (default) puts B above the frame
         line, as in the source's figure; +1 is the mirror assembly.
 
     Notes
     -----
-    Joints O, A, C, B, D; links ``crank`` (O→A, angle φ), ``coupler`` (A→B, angle ψ of the
-    chapter; the source measures γ = π − ψ from −x) and ``rocker`` (D→C, angle ξ). It is the
-    four-bar O-A-C-D of chapter 4 with B = A + 2(C − A), so the four-bar's continuation rule
-    holds at a change point (d + r = 2b).
+    Joints O, A, B, P, C, the book's letters (chapter 4, §4.9; the source's B, C, D are P, B, C);
+    links ``crank`` (O→A, angle φ), ``coupler`` (A→P, angle ψ of the chapter; the source measures
+    γ = π − ψ from −x) and ``rocker`` (C→B, angle ξ). It is the four-bar O-A-B-C of chapter 4 with
+    P = A + 2(B − A), so the four-bar's continuation rule holds at a change point (d + r = 2b).
     """
 
     cli_name = "lambda"
     cli_parameters = (
         Parameter("crank", "length", "crank length r = OA, m"),
-        Parameter("half_coupler", "length", "b = AC = CB = DC, m (coupler A->B has length 2b)"),
-        Parameter("ground", "length", "d, m: the rocker pivot D is at (-d, 0)"),
+        Parameter("half_coupler", "length", "b = AB = BP = CB, m (coupler A->P has length 2b)"),
+        Parameter("ground", "length", "d, m: the rocker pivot C is at (-d, 0)"),
     )
-    links = {"crank": "O", "coupler": "A", "rocker": "D"}
+    links = {"crank": "O", "coupler": "A", "rocker": "C"}
 
     @classmethod
     def example(cls) -> "LambdaMechanism":
@@ -73,7 +74,7 @@ class LambdaMechanism(Mechanism):
                                self.keep_side)
 
     def assembly_intervals(self) -> list[tuple[float, float]]:
-        """Those of its four-bar O–A–C–D (see :meth:`FourBar.assembly_intervals`)."""
+        """Those of its four-bar O–A–B–C (see :meth:`FourBar.assembly_intervals`)."""
         return self.four_bar.assembly_intervals()
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
@@ -86,18 +87,18 @@ class LambdaMechanism(Mechanism):
         end = point_on_link(inner.point("A"), coupler, 2.0 * self.half_coupler)
         return Solution(crank.value, order,
                         angles={"crank": crank, "coupler": coupler, "rocker": inner.angle("rocker")},
-                        points={"O": inner.point("O"), "A": inner.point("A"), "C": inner.point("B"), "B": end,
-                                "D": inner.point("C")},
+                        points={"O": inner.point("O"), "A": inner.point("A"), "B": inner.point("B"), "P": end,
+                                "C": inner.point("C")},
                         links=self.links, singular=inner.singular)
 
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
-        return [Ground("O"), Ground("D"), Bar("crank", ("O", "A"), "crank"),
-                Bar("coupler", ("A", "C", "B"), "coupler"), Bar("rocker", ("D", "C"), "rocker")]
+        return [Ground("O"), Ground("C"), Bar("crank", ("O", "A"), "crank"),
+                Bar("coupler", ("A", "B", "P"), "coupler"), Bar("rocker", ("C", "B"), "rocker")]
 
     def preserved_distances(self) -> dict[tuple[str, str], float]:
         b = self.half_coupler
-        return {("O", "A"): self.crank, ("A", "C"): b, ("C", "B"): b, ("A", "B"): 2.0 * b, ("D", "C"): b,
-                ("O", "D"): self.ground}
+        return {("O", "A"): self.crank, ("A", "B"): b, ("B", "P"): b, ("A", "P"): 2.0 * b, ("C", "B"): b,
+                ("O", "C"): self.ground}
 
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("coupler"), solution.angle("rocker")]

@@ -4,14 +4,16 @@
   about the fixed pivot C = (x_C, y_C): oscillating (|OC| > L1), rotating (|OC| < L1) or with the
   pivot on the crank circle (|OC| = L1), where the block passes through the pivot.
 * :class:`RockerInBlock` — the guide with a moving axis: a slotted coupler hinged to the crank pin A
-  slides through a block that swivels about the fixed point C (the package's joint ``B``; source 002,
-  problem 3, calls the coupler a rocker; an oscillating hydraulic cylinder works the same way).
-* :class:`Shaper` — the slotted lever of a shaping machine: the lever's end B drives the ram G (the
-  package's joint ``D``) through a rod along a horizontal guide.
+  slides through a block that swivels about the fixed point C (source 002, problem 3, calls the
+  coupler a rocker and its points P₁, P₂ C and D; an oscillating hydraulic cylinder works the same way).
+* :class:`Shaper` — the slotted lever of a shaping machine: the lever's end B drives the ram G
+  through a rod along a horizontal guide.
 * :class:`SlottedRockers` — two rockers with a slotted pair: the crank drives the slotted lever
-  about C (the package's joint ``O1``), and the pin D of a second rocker O₂D slides in the same slot.
-* :class:`SliderOnCoupler` — a crank-slider whose coupler line carries a slider that also runs
-  along a second, fixed guide; and the angle between the coupler and the slider's guide.
+  about C (the lecture's O₁), and the pin D of a second rocker O₂D slides in the same slot.
+* :class:`SliderOnCoupler` — a crank-slider whose coupler line carries a block E (the lecture's L)
+  that also runs along a second, fixed guide; and the angle between the coupler and the slider's guide.
+
+Every joint carries the book's letter (chapter 5), so a drawing needs no relabelling.
 
 Notation of chapter 5 (the lecture's and the textbook's letters in brackets): crank angle φ (φ₁),
 lever angle ξ (φ₃), distance L from the lever's pivot to the block (L_tek, l₃), second rocker's
@@ -179,22 +181,22 @@ class RockerInBlock(Mechanism):
     crank : float
         Crank length L₁ = |OA| (m) (source 002: r = 1/k).
     pivot : tuple of float
-        The block's fixed pivot C = (x_C, y_C) (m), the package's joint ``B`` (source 002: (0, d)).
+        The block's fixed pivot C = (x_C, y_C) (m) (source 002: (0, d)).
     reach : float, optional
-        Distance u from A to each end of the slotted coupler (m): the joint ``D`` = A + u·exp(iψ) beyond
-        the block, the joint ``C`` = A − u·exp(iψ) on the other side of the hinge. Default |OC| + L1, so
-        that the block never leaves the coupler.
+        Distance u from A to each end of the slotted coupler (m): the joint ``P2`` (P₂) = A + u·exp(iψ)
+        beyond the block, the joint ``P1`` (P₁) = A − u·exp(iψ) on the other side of the hinge (source 002
+        calls them D and C). Default |OC| + L1, so that the block never leaves the coupler.
 
     Notes
     -----
     The slotted coupler (the link ``rocker``) is hinged to the crank pin A, so its axis moves with A; it
-    slides through the block at the pivot (joint ``B``). Its angle ψ is the direction from A towards the
+    slides through the block at the pivot (joint ``C``). Its angle ψ is the direction from A towards the
     pivot: ψ = ξ + π, where ξ is the direction from the pivot to A of
     :class:`SlottedLever` with the same crank and pivot; the lecture's slide "guide with a moving axis"
-    writes ``tg ψ = (b − y_A)/(a − x_A)``. Joints O, A, B, C, D; links ``crank`` (O→A), ``rocker``
-    (A→B, angle ψ; ``point_on("rocker", u)`` gives any point of it). Slider ``B``: the block's distance
-    from A along the rocker (m), with ``coriolis``, the Coriolis acceleration 2 ψ_t t_t of the block relative to
-    the rocker (m/s², positive towards the rocker's left; the block's own centre does not move, so this
+    writes ``tg ψ = (b − y_A)/(a − x_A)``. Joints O, A, C, P1, P2 (chapter 5's O, A, C, P₁, P₂); links
+    ``crank`` (O→A), ``rocker`` (A→C, angle ψ; ``point_on("rocker", u)`` gives any point of it). Slider
+    ``C``: the block's distance from A along the rocker (m), with ``coriolis``, the Coriolis acceleration
+    2 ψ_t t_t of the block relative to the rocker (m/s², positive towards the rocker's left; the block's own centre does not move, so this
     term, the rocker point's acceleration and the relative one add up to zero). The block oscillates when
     |OC| > L1, rotates when |OC| < L1, and when |OC| = L1 the coupler turns at exactly half the crank's speed (source 002)
     and the block passes through the hinge A (the distance is then signed).
@@ -204,7 +206,7 @@ class RockerInBlock(Mechanism):
     always_assembles = True
     cli_parameters = (
         Parameter("crank", "length", "crank length L1 = |OA|, m"),
-        Parameter("pivot", "pair", "the block's fixed pivot C = (x_C, y_C) (joint B), m, as X,Y"),
+        Parameter("pivot", "pair", "the block's fixed pivot C = (x_C, y_C), m, as X,Y"),
     )
     links = {"crank": "O", "rocker": "A"}
 
@@ -226,21 +228,21 @@ class RockerInBlock(Mechanism):
         xi = block.lever_angle
         psi = AngleMotion(xi.value + np.pi, *xi.derivatives()[1:])
         points = {"O": fixed_point(0j, crank.value, order), "A": pin,
-                  "B": fixed_point(self._lever.pivot_point, crank.value, order),
-                  "C": point_on_link(pin, psi, -self.reach), "D": point_on_link(pin, psi, self.reach)}
-        extras = {"B": {"coriolis": block.coriolis_magnitude}} if order >= 1 else {}
+                  "C": fixed_point(self._lever.pivot_point, crank.value, order),
+                  "P1": point_on_link(pin, psi, -self.reach), "P2": point_on_link(pin, psi, self.reach)}
+        extras = {"C": {"coriolis": block.coriolis_magnitude}} if order >= 1 else {}
         return Solution(crank.value, order, angles={"crank": crank, "rocker": psi}, points=points, links=self.links,
-                        sliders={"B": block.distance}, extras=extras, singular=block.singular)
+                        sliders={"C": block.distance}, extras=extras, singular=block.singular)
 
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
-        return [Ground("O"), Ground("B"), Bar("rocker", ("C", "D"), "rocker"), Bar("crank", ("O", "A"), "crank"),
-                Block("B", "rocker")]
+        return [Ground("O"), Ground("C"), Bar("rocker", ("P1", "P2"), "rocker"), Bar("crank", ("O", "A"), "crank"),
+                Block("C", "rocker")]
 
     def preserved_distances(self) -> dict[tuple[str, str], float]:
-        return {("O", "A"): self.crank, ("A", "D"): self.reach, ("A", "C"): self.reach}
+        return {("O", "A"): self.crank, ("A", "P2"): self.reach, ("A", "P1"): self.reach}
 
     def coordinates(self, solution: Solution) -> list[Motion]:
-        return [solution.angle("rocker"), solution.slider("B")]
+        return [solution.angle("rocker"), solution.slider("C")]
 
     def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         psi, t = q
@@ -261,17 +263,17 @@ class Shaper(Mechanism):
     lever : float
         Lever length |CB| (m), at least ``|OC| + L₁``.
     rod : float
-        Length of the rod B→D from the lever's end to the ram (m).
+        Length of the rod B→G from the lever's end to the ram (m).
     ram_height : float
         The ram's guide is the horizontal line y = ``ram_height`` (m).
     branch : int
-        +1: the ram D is to the right of the foot of the perpendicular from B on the guide; −1: left.
+        +1: the ram G is to the right of the foot of the perpendicular from B on the guide; −1: left.
 
     Notes
     -----
-    Joints O, A (crank pin and block), C, B (lever end), D (ram). Links ``crank`` (O→A), ``lever``
-    (C→B, angle ξ), ``rod`` (B→D). Sliders ``A`` (L, with ``coriolis``) and ``D`` (the ram's
-    abscissa x_D, m). The ram's extreme positions are those of the lever, so the ram's stroke and
+    Joints O, A (crank pin and block), C, B (lever end), G (ram), chapter 5's letters. Links ``crank``
+    (O→A), ``lever`` (C→B, angle ξ), ``rod`` (B→G). Sliders ``A`` (L, with ``coriolis``) and ``G`` (the
+    ram's abscissa x_G, m). The ram's extreme positions are those of the lever, so the ram's stroke and
     time ratio follow from the lever's (:mod:`mechanisms.analysis.slotted`).
     """
 
@@ -280,7 +282,7 @@ class Shaper(Mechanism):
         Parameter("crank", "length", "crank length L1 = |OA|, m"),
         Parameter("pivot", "pair", "the lever's fixed pivot C = (x_C, y_C), m, as X,Y"),
         Parameter("lever", "length", "lever length |CB|, m"),
-        Parameter("rod", "length", "rod length |BD| from the lever's end to the ram, m"),
+        Parameter("rod", "length", "rod length |BG| from the lever's end to the ram G, m"),
         Parameter("ram_height", "number", "the ram's guide is the line y = RAM_HEIGHT, m"),
         Parameter("branch", "branch", "+1: ram right of the lever's end, -1: left", 1),
     )
@@ -293,7 +295,7 @@ class Shaper(Mechanism):
 
     def groups(self) -> tuple[Group, ...]:
         return (Crank("O", "A"), RPR("A", "C", "lever", slider="block"), LinkPoint("B", "lever"),
-                RRP("D", "B", "rod", "ram", 0.0))
+                RRP("G", "B", "rod", "ram", 0.0))
 
     def __init__(self, crank: float, pivot: Sequence[float], lever: float, rod: float, ram_height: float,
                  branch: int = 1):
@@ -322,22 +324,22 @@ class Shaper(Mechanism):
         base = self._lever._solve(crank, order)
         end = base.point("B")
         ram = slider_on_line(end, self.rod, 1j * self.ram_height, 0.0, self.branch, angles=crank.value)
-        points = {name: base.point(name) for name in ("O", "A", "C", "B")} | {"D": ram.point}
+        points = {name: base.point(name) for name in ("O", "A", "C", "B")} | {"G": ram.point}
         return Solution(crank.value, order, angles={"crank": crank, "lever": base.angle("lever"),
                                                     "rod": ram.rod_angle},
-                        points=points, links=self.links, sliders={"A": base.slider("A"), "D": ram.travel},
+                        points=points, links=self.links, sliders={"A": base.slider("A"), "G": ram.travel},
                         extras=base.extras, singular=base.singular | ram.singular)
 
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         return [Ground("O"), Ground("C"), Guide(1j * self.ram_height, 0.0), Bar("lever", ("C", "B"), "lever"),
-                Bar("crank", ("O", "A"), "crank"), Bar("rod", ("B", "D"), "coupler"), Block("A", "lever"),
-                Block("D", 0.0)]
+                Bar("crank", ("O", "A"), "crank"), Bar("rod", ("B", "G"), "coupler"), Block("A", "lever"),
+                Block("G", 0.0)]
 
     def preserved_distances(self) -> dict[tuple[str, str], float]:
-        return {("O", "A"): self.crank, ("C", "B"): self.lever, ("B", "D"): self.rod}
+        return {("O", "A"): self.crank, ("C", "B"): self.lever, ("B", "G"): self.rod}
 
     def coordinates(self, solution: Solution) -> list[Motion]:
-        return [solution.angle("lever"), solution.slider("A"), solution.angle("rod"), solution.slider("D")]
+        return [solution.angle("lever"), solution.slider("A"), solution.angle("rod"), solution.slider("G")]
 
     def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         xi, s, psi, x = q
@@ -357,7 +359,7 @@ class SlottedRockers(Mechanism):
         Crank length L1 = |OA| (m); the crank turns about O = (0, 0) and drives the lever through
         a block on its pin A.
     pivot : tuple of float
-        The lever's pivot C = (x_C, y_C) (m), the package's joint ``O1`` (the lecture's (a, b)).
+        The lever's pivot C = (x_C, y_C) (m) (the lecture's O₁ = (a, b)).
     rocker_pivot : tuple of float
         The second rocker's pivot O₂ (m) (the lecture's (m, n)).
     rocker : float
@@ -370,7 +372,7 @@ class SlottedRockers(Mechanism):
     -----
     Lecture slides "two rockers with a slotted pair": the signed distance h_N from O₂ to the lever's
     line, its foot N (the lecture's K), the point D and the current length |CD| (the lecture's L_tek)
-    with their derivatives. Joints O, A, O1 (the pivot C), B (the lever's end), O2, D. Links ``crank``,
+    with their derivatives. Joints O, A, C (the lever's pivot), B (the lever's end), O2, D. Links ``crank``,
     ``lever`` (C→A, angle ξ), ``rocker`` (O₂→D, angle θ_O₂D). Sliders ``A`` and ``D``: distances from
     C along the lever (m), each with ``coriolis``; ``extras["O2"]`` holds h_N, its rates (m, m/s,
     m/s²), also given by :func:`mechanisms.analysis.slotted.distance_from_lever`.
@@ -379,12 +381,12 @@ class SlottedRockers(Mechanism):
     cli_name = "slotted-rockers"
     cli_parameters = (
         Parameter("crank", "length", "crank length L1 = |OA|, m"),
-        Parameter("pivot", "pair", "the lever's pivot C = (x_C, y_C) (joint O1), m, as X,Y"),
+        Parameter("pivot", "pair", "the lever's pivot C = (x_C, y_C), m, as X,Y"),
         Parameter("rocker_pivot", "pair", "the second rocker's pivot O2, m, as X,Y"),
         Parameter("rocker", "length", "the second rocker's length |O2 D|, m"),
         Parameter("branch", "branch", "+1: D ahead of the foot N along the lever, -1: behind", 1),
     )
-    links = {"crank": "O", "lever": "O1", "rocker": "O2"}
+    links = {"crank": "O", "lever": "C", "rocker": "O2"}
 
     @classmethod
     def example(cls) -> "SlottedRockers":
@@ -400,7 +402,7 @@ class SlottedRockers(Mechanism):
         self.branch = require_branch(branch)
         self._lever = SlottedLever(self.crank, self.pivot)
         if self._lever.kind == "through pivot":
-            raise InvalidParameterError("pivot", pivot, "off the crank circle (|O O1| ≠ L₁)")
+            raise InvalidParameterError("pivot", pivot, "off the crank circle (|OC| ≠ L₁)")
         self.lever = max(self._lever.lever, abs(complex(*self.rocker_pivot) - complex(*self.pivot)) + self.rocker)
 
     def _rescaled(self, factor: float) -> "SlottedRockers":
@@ -410,12 +412,12 @@ class SlottedRockers(Mechanism):
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
         pin, block = _lever_part(crank, self.crank, self._lever.pivot_point, self._lever.kind)
         xi = block.lever_angle
-        o1, o2 = complex(*self.pivot), complex(*self.rocker_pivot)
-        pin_d = circle_on_line(o2, self.rocker, o1, xi, self.branch, angles=crank.value)
+        c, o2 = complex(*self.pivot), complex(*self.rocker_pivot)
+        pin_d = circle_on_line(o2, self.rocker, c, xi, self.branch, angles=crank.value)
         _, theta = polar(pin_d.point - o2)
         slot_d = pin_d.along
-        points = {"O": fixed_point(0j, crank.value, order), "A": pin, "O1": fixed_point(o1, crank.value, order),
-                  "B": point_on_link(o1, xi, self.lever), "O2": fixed_point(o2, crank.value, order),
+        points = {"O": fixed_point(0j, crank.value, order), "A": pin, "C": fixed_point(c, crank.value, order),
+                  "B": point_on_link(c, xi, self.lever), "O2": fixed_point(o2, crank.value, order),
                   "D": pin_d.point}
         extras = {}
         if order >= 1:
@@ -432,12 +434,12 @@ class SlottedRockers(Mechanism):
         return distance_to_line(complex(*self.rocker_pivot), complex(*self.pivot), solution.angle("lever")).foot
 
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
-        return [Ground("O"), Ground("O1"), Ground("O2"), Bar("lever", ("O1", "B"), "lever"),
+        return [Ground("O"), Ground("C"), Ground("O2"), Bar("lever", ("C", "B"), "lever"),
                 Bar("crank", ("O", "A"), "crank"), Bar("rocker", ("O2", "D"), "rocker"), Block("A", "lever"),
                 Block("D", "lever")]
 
     def preserved_distances(self) -> dict[tuple[str, str], float]:
-        return {("O", "A"): self.crank, ("O1", "B"): self.lever, ("O2", "D"): self.rocker}
+        return {("O", "A"): self.crank, ("C", "B"): self.lever, ("O2", "D"): self.rocker}
 
     def coordinates(self, solution: Solution) -> list[Motion]:
         return [solution.angle("lever"), solution.slider("A"), solution.angle("rocker"), solution.slider("D")]
@@ -453,7 +455,7 @@ class SlottedRockers(Mechanism):
 
 
 class SliderOnCoupler(Mechanism):
-    """A crank-slider whose coupler line carries a slider L that also runs on a fixed guide.
+    """A crank-slider whose coupler line carries a block E that also runs on a fixed guide.
 
     Parameters
     ----------
@@ -464,19 +466,20 @@ class SliderOnCoupler(Mechanism):
     offset : float
         The ordinate e of the slider B's guide (m).
     guide_point : tuple of float
-        A point (x₀, y₀) of the second, fixed guide (m), on which L runs.
+        A point (x₀, y₀) of the second, fixed guide (m), on which E runs.
     guide_angle : float
         The second guide's direction β₂ (rad).
 
     Notes
     -----
     Lecture slides "slider on a coupler with a fixed guide" and "angle between the coupler and the
-    fixed direction of the slider". L is the intersection of the coupler's line AB with the fixed
-    guide (:func:`~mechanisms.blocks.lines.line_intersection`); a block hinged to a slider on the
-    guide slides in a slot along the coupler. Joints O, A, B, L; links ``crank``, ``coupler``
-    (A→B, angle ψ); sliders ``B`` (x_B, m) and ``L`` (the position of L along the second guide
-    from (x₀, y₀), m) and ``L_coupler`` (the same block's position along the coupler from A, m):
-    L is a pair of sliding pairs.
+    fixed direction of the slider". E (the lecture's L; chapter 5 keeps L for a length) is the
+    intersection of the coupler's line AB with the fixed guide
+    (:func:`~mechanisms.blocks.lines.line_intersection`); a block hinged to a slider on the guide
+    slides in a slot along the coupler. Joints O, A, B, E; links ``crank``, ``coupler`` (A→B, angle ψ);
+    sliders ``B`` (x_B, m) and ``E`` (s_E, the position of E along the second guide from (x₀, y₀), m)
+    and ``E_coupler`` (u = |AE|, the same block's position along the coupler from A, m): E is a pair
+    of sliding pairs.
     """
 
     cli_name = "slider-on-coupler"
@@ -484,8 +487,8 @@ class SliderOnCoupler(Mechanism):
         Parameter("crank", "length", "crank length L1 = |OA|, m"),
         Parameter("rod", "length", "coupler length |AB|, m"),
         Parameter("offset", "number", "the slider B runs on the line y = OFFSET, m", 0.0),
-        Parameter("guide_point", "pair", "a point X0,Y0 of the fixed guide of L, m"),
-        Parameter("guide_angle", "angle", "direction of the guide of L, degrees from +x"),
+        Parameter("guide_point", "pair", "a point X0,Y0 of the fixed guide of the block E, m"),
+        Parameter("guide_angle", "angle", "direction of the guide of the block E, degrees from +x"),
     )
     links = {"crank": "O", "coupler": "A"}
 
@@ -514,9 +517,9 @@ class SliderOnCoupler(Mechanism):
         slide = slider_on_line(pin, self.rod, 1j * self.offset, 0.0, 1, angles=crank.value)
         psi = slide.rod_angle
         crossing = line_intersection(pin, psi, complex(*self.guide_point), self.guide_angle, angles=crank.value)
-        points = {"O": fixed_point(0j, crank.value, order), "A": pin, "B": slide.point, "L": crossing.point}
+        points = {"O": fixed_point(0j, crank.value, order), "A": pin, "B": slide.point, "E": crossing.point}
         return Solution(crank.value, order, angles={"crank": crank, "coupler": psi}, points=points, links=self.links,
-                        sliders={"B": slide.travel, "L": crossing.along_second, "L_coupler": crossing.along_first},
+                        sliders={"B": slide.travel, "E": crossing.along_second, "E_coupler": crossing.along_first},
                         singular=slide.singular | crossing.singular)
 
     def guide_angle_of_coupler(self, solution: Solution) -> AngleMotion:
@@ -532,14 +535,14 @@ class SliderOnCoupler(Mechanism):
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
         x0, y0 = self.guide_point
         return [Ground("O"), Guide(complex(self.rod, self.offset), 0.0), Guide(complex(x0, y0), self.guide_angle),
-                Bar("crank", ("O", "A"), "crank"), Bar("coupler", ("A", "B", "L"), "coupler"), Block("B", 0.0),
-                Block("L", self.guide_angle)]
+                Bar("crank", ("O", "A"), "crank"), Bar("coupler", ("A", "B", "E"), "coupler"), Block("B", 0.0),
+                Block("E", self.guide_angle)]
 
     def preserved_distances(self) -> dict[tuple[str, str], float]:
         return {("O", "A"): self.crank, ("A", "B"): self.rod}
 
     def coordinates(self, solution: Solution) -> list[Motion]:
-        return [solution.angle("coupler"), solution.slider("B"), solution.slider("L_coupler"), solution.slider("L")]
+        return [solution.angle("coupler"), solution.slider("B"), solution.slider("E_coupler"), solution.slider("E")]
 
     def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         psi, x, t, g = q

@@ -246,7 +246,8 @@ def draw(mechanism: Mechanism, solution: Solution, index: int = 0, ax: Axes | No
         Where to draw; a new figure if omitted.
     labels : bool or dict
         Write the joint names next to the joints; a dict ``{package name: page letter}`` writes the
-        page's own letters for the joints it lists (``{"L": "E"}``), the package's names for the others.
+        page's own letters for the joints it lists (``{"B": "B1"}``: B in its first position), the
+        package's names for the others.
     size : float, optional
         Size of hinges and symbols (m); by default 3 % of the mechanism's extent.
     label_offset : (float, float) or dict

@@ -278,7 +278,7 @@ def explorer(build: Callable[..., Mechanism], parameters: Sequence[Parameter] = 
         Crank speed φ_t (1/s) of the velocities and accelerations (1 unless the page says otherwise).
     labels : bool or mapping
         Write the joints' names; a mapping ``{package name: label}`` writes some under the page's own
-        letters (``{"L": "E", "O1": "C"}``), the others under the package's.
+        letters (``{"B": "B_1"}``), the others under the package's (digits as a subscript: ``O2`` is O₂).
     still : mapping, optional
         The parameter values of the still image, a member that assembles at a frame (default: the first
         member that does).
@@ -607,6 +607,11 @@ def _quantized(values: np.ndarray, origin: tuple[float, float], step: float) -> 
     return out
 
 
+def _digits_below(name: str) -> str:
+    """A joint's name as the drawings set it: trailing digits as a subscript (``P1`` → ``P_1``)."""
+    return re.sub(r"^([A-Za-z]+)(\d+)$", r"\1_\2", name)
+
+
 def _encoded(xy: list[int | None]) -> list[int | None]:
     """A point's stored positions in their light form, which :func:`_decoded` reads back.
 
@@ -785,7 +790,7 @@ def _svg(data: dict[str, Any], member_index: int, frame: int, description: str =
         for name in list(joints) + list(data["dots"]):
             c, hidden = at(name) or (0.0, 0.0), "" if at(name) else ' style="display:none"'
             text.append(f'<text class="mech-label" data-joint="{name}"{hidden} x="{num(c[0] + 0.6 * size)}" '
-                        f'y="{num(-c[1] - 0.6 * size)}">{_subscripted(data.get("names", {}).get(name, name), font)}</text>')
+                        f'y="{num(-c[1] - 0.6 * size)}">{_subscripted(data.get("names", {}).get(name, _digits_below(name)), font)}</text>')
     for index, arrow in enumerate(data["arrows"]):
         p, vector = at(arrow["at"]), data["members"][member_index]["vectors"][index]
         shown = p is not None and vector[2 * frame] is not None
