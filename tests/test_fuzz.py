@@ -92,7 +92,8 @@ def _arrays(solution):
 
 def check_solution(mechanism, solution, phi_given) -> None:
     """NaN or inf only where ``singular``; positions satisfy the loop closures elsewhere."""
-    phi = np.asarray(solution.phi, dtype=float)
+    # a family of linkages (dimensions given as arrays) has one row of positions per member
+    phi = np.broadcast_to(np.asarray(solution.phi, dtype=float), np.shape(solution.singular))
     singular = np.broadcast_to(solution.singular, phi.shape)
     for what, motion in _arrays(solution):
         for derivative in motion.derivatives():

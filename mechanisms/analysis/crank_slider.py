@@ -250,6 +250,7 @@ def slider_extremes(mechanism: CrankSlider, omega: float = 1.0, samples: int = 7
     The velocity is extreme where the acceleration vanishes, which has no closed form for the exact
     mechanism; the search uses the exact closed-form velocities and accelerations.
     """
+    mechanism.require_one_linkage("the extreme slider velocities and accelerations")
     omega = require_finite("omega", omega)
     if omega == 0.0:
         raise InvalidParameterError("omega", omega, "a crank speed other than 0 1/s (at rest there are no extremes)")
@@ -302,6 +303,7 @@ def approximate_slider(mechanism: CrankSlider, phi: ArrayLike, omega: float = 1.
     ``s ≈ L2 + L1 (cos φ − (λ/4)(1 − cos 2φ))``, ``v ≈ −ω L1 (sin φ + (λ/2) sin 2φ)``,
     ``a ≈ −ω² L1 (cos φ + λ cos 2φ)``. The neglected term of s is −h_A⁴/(8 L2³), about L1 λ³/8.
     """
+    mechanism.require_one_linkage("the series slider motion")
     phi = require_finite_array("phi", phi, "crank angles in rad")
     omega = require_finite("omega", omega)
     l1, l2, e, b = mechanism.crank, mechanism.rod, mechanism.offset, mechanism.branch

@@ -40,7 +40,8 @@ from ..core.motion import AngleMotion, Motion
 from ..linkages.base import Mechanism, Solution, registry
 from ..core.errors import SingularPositionWarning
 from ..linkages.composed import Linkage
-from ..linkages.four_bar import FourBar, _pqf, four_bar_family, half_angle_formula, stable_formula
+from ..linkages.chunks import BLOCK
+from ..linkages.four_bar import FourBar, _pqf, half_angle_formula, stable_formula
 from ..linkages.groups import RRR, Crank
 from ..linkages.linkage_file import load_linkage
 from ..verify import central_difference, solve_constraints
@@ -430,9 +431,12 @@ FAMILY_MEMBERS = 100_000
 FAMILY_POSITIONS = 360
 """Crank positions of each member in the family row."""
 
-FAMILY_CHUNK = 2_000
-"""Members solved per call of :func:`~mechanisms.linkages.four_bar.four_bar_family` (a call's arrays stay
-within tens of megabytes)."""
+FAMILY_CHUNK = max(1, BLOCK // FAMILY_POSITIONS)
+"""Members solved per call of a family of :class:`~mechanisms.linkages.four_bar.FourBar`: as many as make
+:data:`~mechanisms.linkages.chunks.BLOCK` positions (91 × 360), so that a call's temporaries stay in the
+processor's cache and their memory is reused by the next call. With 2000 members a call's arrays (11 MB each)
+were given back to the system and taken again at every call, and the page faults cost two thirds of the time.
+"""
 
 PEER_FAMILY_MEMBERS = 500
 """Members of the same family that pylinkage solves, one linkage after another, to time its loop."""
@@ -472,10 +476,10 @@ def bench_family(members: int = FAMILY_MEMBERS, positions: int = FAMILY_POSITION
     def ours():
         for lo in range(0, members, FAMILY_CHUNK):
             hi = lo + FAMILY_CHUNK
-            four_bar_family(l1[lo:hi], l2[lo:hi], l3[lo:hi], xc[lo:hi], 0.0, phi, order=0)
+            FourBar(l1[lo:hi], l2[lo:hi], l3[lo:hi], (xc[lo:hi], 0.0), keep_side=True).solve(phi, order=0)
 
     seconds = best_time(ours, repeat)
-    sample = four_bar_family(l1[:3], l2[:3], l3[:3], xc[:3], 0.0, phi, order=0).points["B"].value
+    sample = FourBar(l1[:3], l2[:3], l3[:3], (xc[:3], 0.0), keep_side=True).solve(phi, order=0).point("B").value
     error = 0.0
     references = []
     for k in range(3):

@@ -24,10 +24,10 @@ from numpy.typing import ArrayLike
 
 from ..core.errors import AssemblyError, InvalidParameterError
 from ..core.validate import LENGTH_MAX, LENGTH_MIN, require_branch, require_finite_array, require_length
-from ..core.angles import angle_of
+from ..core.angles import angle_of, constant
 from ..core.motion import AngleMotion, PointMotion
 
-__all__ = ["Hinge", "hinge", "hinge_plain", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
+__all__ = ["Hinge", "DeferredAngle", "hinge", "hinge_plain", "SINGULAR_TOLERANCE", "ASSEMBLY_TOLERANCE"]
 
 ASSEMBLY_TOLERANCE = 1e-12
 """Relative overlap of the circles accepted as touching (round-off), as a fraction of |pJ| + |qJ|."""
@@ -40,6 +40,48 @@ computed from it would be huge finite numbers; 1e-6 is reached only within about
 limit, where the rates are indeed beyond any use."""
 
 
+class DeferredAngle(AngleMotion):
+    """A link's angle at order 0 computed only when first read: ``arg`` of its arm r = J − p.
+
+    It is an :class:`~mechanisms.core.motion.AngleMotion` whose ``value`` is computed (once) when first read,
+    so that a family solved for its positions does not pay for the arctangents of angles nobody reads. What
+    makes a new motion from it (indexing, arithmetic) works on the computed angle.
+    """
+
+    def __init__(self, arm: np.ndarray, minus: Any = None):   # a frozen dataclass: its fields set directly
+        object.__setattr__(self, "arm", arm)            # the arm r, or the point J of which r = J − minus
+        object.__setattr__(self, "minus", minus)
+        object.__setattr__(self, "velocity", None)
+        object.__setattr__(self, "acceleration", None)
+
+    @property
+    def value(self) -> np.ndarray:
+        """The angle (rad), computed on first reading."""
+        if "_angle" not in self.__dict__:
+            arm, minus = self.__dict__["arm"], self.__dict__["minus"]
+            object.__setattr__(self, "_angle", angle_of(arm if minus is None else np.subtract(arm, minus)))
+        return self.__dict__["_angle"]
+
+    def resolved(self) -> AngleMotion:
+        """The same angle as a plain :class:`~mechanisms.core.motion.AngleMotion`."""
+        return AngleMotion(self.value)
+
+    def __getitem__(self, index: Any) -> AngleMotion:      # type: ignore[override]
+        return self.resolved()[index]
+
+    def truncated(self, order: int) -> AngleMotion:        # type: ignore[override]
+        return self.resolved().truncated(order)
+
+    def _combine(self, other: Any, sign: float) -> AngleMotion:   # type: ignore[override]
+        return self.resolved()._combine(other, sign)
+
+    def __mul__(self, factor: float) -> AngleMotion:       # type: ignore[override]
+        return self.resolved() * factor
+
+    def __rmul__(self, factor: float) -> AngleMotion:      # type: ignore[override]
+        return self.resolved() * factor
+
+
 @dataclass(frozen=True)
 class Hinge:
     """The solved hinge J of two links, with the angles of both links.
@@ -48,10 +90,11 @@ class Hinge:
     ----------
     point : PointMotion
         J with its velocity and acceleration (m, m/s, m/s²).
-    angle_p : AngleMotion
-        Angle of the link p → J (rad) with ω, ε (``omega``, ``alpha``).
-    angle_q : AngleMotion
-        Angle of the link q → J (rad) with ω, ε (``omega``, ``alpha``).
+    angle_p : AngleMotion or DeferredAngle
+        Angle of the link p → J (rad) with ω, ε (``omega``, ``alpha``); at order 0, solved with
+        ``deferred_angles=True``, a :class:`DeferredAngle` (computed when first read).
+    angle_q : AngleMotion or DeferredAngle
+        Angle of the link q → J (rad) with ω, ε (``omega``, ``alpha``), likewise.
     singular : ndarray of bool
         True where p, q and J are collinear: the two links are in line, the velocities of J
         are unbounded and are set to ``nan``; also where p and q coincide (possible for
@@ -110,19 +153,32 @@ def _lengths(name: str, value: object) -> float | np.ndarray:
     return array
 
 
+def _sides(branch: object) -> Any:
+    """The branch as a float ±1, or an array of them (one per position or per member of a family); or raise
+    naming ``branch``."""
+    branch_array = np.asarray(branch)
+    if branch_array.ndim == 0:
+        return float(require_branch(branch))
+    valid = (branch_array == 1) | (branch_array == -1)
+    if not valid.all():
+        require_branch(branch_array[~valid].ravel()[0].item())
+    return branch_array.astype(float)
+
+
 def _one_position(solve: Callable[..., Hinge], p: PointMotion, q: PointMotion, length_p: float, length_q: float,
                   branch: int | np.ndarray, angles: ArrayLike | None, lenient: bool) -> Hinge:
     """One position: solved as an array of one, returned as numbers."""
-    one = solve(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles, lenient)
+    one = solve(p[np.newaxis], q[np.newaxis], length_p, length_q, branch, angles, lenient)   # angles computed now
     return Hinge(one.point[0], one.angle_p[0], one.angle_q[0], one.singular[0],
                  None if one.assembled is None else one.assembled[0])
 
 
 def _checked(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, branch: int | np.ndarray,
              angles: ArrayLike | None, lenient: bool = False) -> tuple[Any, Any, Any, np.ndarray, np.ndarray,
-                                                                       np.ndarray | None]:
-    """The hinge's inputs checked: the lengths, the side(s) as floats, ``d = q − p``, ``D = |d|`` and, when
-    ``lenient``, the mask of the positions where the circles meet (else None).
+                                                                       np.ndarray, np.ndarray, np.ndarray | None]:
+    """The hinge's inputs checked: the lengths, the side(s) as floats, ``d = q − p``, ``D = |d|``, the margins
+    ``far = L_p + L_q − D`` and ``near = D − |L_p − L_q|`` (both ≥ 0 where the circles meet; Heron's factors,
+    computed once) and, when ``lenient``, the mask of the positions where the circles meet (else None).
 
     ``d`` has the shape of the positions broadcast with the lengths and sides (a family of linkages: one
     row per member). Raises :class:`AssemblyError` naming the crank angles where the circles do not meet,
@@ -130,15 +186,7 @@ def _checked(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, branc
     """
     length_p = _lengths("length_p", length_p)
     length_q = _lengths("length_q", length_q)
-    branch_array = np.asarray(branch)
-    side: Any
-    if branch_array.ndim == 0:
-        side = float(require_branch(branch))
-    else:
-        valid = (branch_array == 1) | (branch_array == -1)
-        if not valid.all():
-            require_branch(branch_array[~valid].ravel()[0].item())
-        side = branch_array.astype(float)
+    side = _sides(branch)
     d = q.value - p.value
     shape = np.broadcast_shapes(np.shape(d), np.shape(length_p), np.shape(length_q), np.shape(side))
     if shape != np.shape(d):
@@ -147,30 +195,39 @@ def _checked(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, branc
     total = length_p + length_q
     difference = abs(length_p - length_q)
     tolerance = ASSEMBLY_TOLERANCE * total
+    far = np.subtract(total, distance)
+    near = np.subtract(distance, difference)
     if lenient:
-        assembled = (total - distance >= -tolerance) & (distance - difference >= -tolerance)
-        return length_p, length_q, side, d, distance, assembled
-    # the extremes decide whether any position fails; the masks are made only then. fmin/fmax skip the
-    # positions that an earlier singular position left undefined (nan), so they cannot hide a failure.
-    shortest, longest = (np.fmin.reduce(distance, axis=None), np.fmax.reduce(distance, axis=None)) if distance.size \
-        else (1.0, 0.0)
+        # the smallest margins of each row first (no array of flags): where every position assembles, as in
+        # most families, the mask is one number broadcast; nan (a position left undefined) fails the test
+        if far.ndim and far.size and (np.minimum.reduce(far, axis=-1, keepdims=True) >= -tolerance).all() and \
+                (np.minimum.reduce(near, axis=-1, keepdims=True) >= -tolerance).all():
+            return length_p, length_q, side, d, distance, far, near, constant(True, far.shape)
+        assembled = far >= -tolerance
+        assembled &= near >= -tolerance
+        return length_p, length_q, side, d, distance, far, near, assembled
+    # the smallest margins decide whether any position fails; the masks are made only then. fmin skips the
+    # positions that an earlier singular position left undefined (nan), so it cannot hide a failure.
     if np.ndim(total):      # a family: each member's own limits
-        failing = bool(((distance - difference < -tolerance) | (total - distance < -tolerance)).any())
+        failing = bool(((near < -tolerance) | (far < -tolerance)).any())
     else:
-        failing = shortest - difference < -tolerance or total - longest < -tolerance
+        failing = bool(distance.size) and (np.fmin.reduce(near, axis=None) < -tolerance
+                                           or np.fmin.reduce(far, axis=None) < -tolerance)
     if failing:
         _assembly_failure(distance, d.shape, total, difference, tolerance, angles)
-    return length_p, length_q, side, d, distance, None
+    return length_p, length_q, side, d, distance, far, near, None
 
 
 def _unassembled(solved: Hinge, assembled: np.ndarray | None) -> Hinge:
     """A leniently solved hinge: ``nan`` wherever the circles do not meet, and the mask kept."""
-    if assembled is None:
-        return solved
+    if assembled is None or (assembled.size and not any(assembled.strides) and assembled.flat[0]):
+        return solved if assembled is None else Hinge(solved.point, solved.angle_p, solved.angle_q, solved.singular,
+                                                      assembled)      # one True broadcast: all assemble
     missing = ~assembled
     if missing.any():
         for motion in (solved.point, solved.angle_p, solved.angle_q):
-            for array in motion.derivatives():
+            # a deferred angle is marked in its arm, from which it is computed
+            for array in ((motion.__dict__["arm"],) if isinstance(motion, DeferredAngle) else motion.derivatives()):
                 if array is not None:
                     np.copyto(array, np.nan, where=missing)
         solved.singular[missing] = False
@@ -178,33 +235,36 @@ def _unassembled(solved: Hinge, assembled: np.ndarray | None) -> Hinge:
 
 
 def hinge_plain(p: PointMotion, q: PointMotion, length_p: float | np.ndarray, length_q: float | np.ndarray,
-                branch: int | np.ndarray = 1, angles: ArrayLike | None = None, lenient: bool = False) -> Hinge:
+                branch: int | np.ndarray = 1, angles: ArrayLike | None = None, lenient: bool = False,
+                deferred_angles: bool = False) -> Hinge:
     """:func:`hinge` written as the book writes it: the same formulas, plain numpy, no speed tricks.
 
     The book shows this form; :func:`hinge`, which the mechanisms use, computes the same numbers
     in place (fewer temporaries stay in the processor's cache, chapter 9's appendix) and the tests
     compare the two. Parameters, results and errors are those of :func:`hinge`.
     """
-    return _solved(hinge_plain, _hinge_plain, p, q, length_p, length_q, branch, angles, lenient)
+    return _solved(hinge_plain, _hinge_plain, p, q, length_p, length_q, branch, angles, lenient, deferred_angles)
 
 
 def _solved(solve: Callable[..., Hinge], formulas: Callable[..., Hinge], p: PointMotion, q: PointMotion,
-            length_p: Any, length_q: Any, branch: int | np.ndarray, angles: ArrayLike | None, lenient: bool) -> Hinge:
+            length_p: Any, length_q: Any, branch: int | np.ndarray, angles: ArrayLike | None, lenient: bool,
+            deferred_angles: bool) -> Hinge:
     """What :func:`hinge` and :func:`hinge_plain` share: one position solved as an array of one, the inputs
     checked, the ``formulas`` applied, and (``lenient``) the positions that do not assemble marked."""
     if np.ndim(p.value) == 0 and np.ndim(q.value) == 0 and np.ndim(length_p) == 0 and np.ndim(length_q) == 0:
         return _one_position(solve, p, q, length_p, length_q, branch, angles, lenient)
-    length_p, length_q, side, d, distance, assembled = _checked(p, q, length_p, length_q, branch, angles, lenient)
-    return _unassembled(formulas(p, q, length_p, length_q, side, d, distance), assembled)
+    length_p, length_q, side, d, distance, far, near, assembled = _checked(p, q, length_p, length_q, branch, angles,
+                                                                           lenient)
+    return _unassembled(formulas(p, q, length_p, length_q, side, d, distance, far, near, deferred_angles), assembled)
 
 
 def _hinge_plain(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, side: Any, d: np.ndarray,
-                 distance: np.ndarray) -> Hinge:
-    """The formulas of :func:`hinge_plain`, on checked inputs."""
+                 distance: np.ndarray, far: np.ndarray, near: np.ndarray, deferred_angles: bool = False) -> Hinge:
+    """The formulas of :func:`hinge_plain`, on checked inputs (``far = L_p + L_q − D``, ``near = D − |L_p − L_q|``)."""
     total, difference = length_p + length_q, abs(length_p - length_q)
     # twice = 2·h·D by Heron, the small factors near a limit clipped at zero against round-off
-    twice = (np.sqrt(np.maximum(total - distance, 0.0) * (total + distance))
-             * np.sqrt(np.maximum(distance - difference, 0.0) * (distance + difference)))
+    twice = (np.sqrt(np.maximum(far, 0.0) * (total + distance))
+             * np.sqrt(np.maximum(near, 0.0) * (distance + difference)))
     singular = twice <= 2.0 * SINGULAR_TOLERANCE * length_p * length_q
     # J = p + (m + i·branch·h)·d/D: m/D = (1 + (L_p² − L_q²)/D²)/2, h/D = h·D/D²
     # (where the known joints coincide, D = 0, J is anywhere on a circle: nan, and singular)
@@ -213,9 +273,11 @@ def _hinge_plain(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, s
         height = 0.5 * side * twice / distance**2
         arm_p = (foot + 1j * height) * d
     point = p.value + arm_p
+    order = min(p.order, q.order)
+    if order == 0 and deferred_angles:
+        return Hinge(PointMotion(point), DeferredAngle(arm_p), DeferredAngle(point, q.value), singular)
     arm_q = point - q.value
     theta_p, theta_q = np.angle(arm_p), np.angle(arm_q)
-    order = min(p.order, q.order)
     if order == 0:
         return Hinge(PointMotion(point), AngleMotion(theta_p), AngleMotion(theta_q), singular)
     det = 0.5 * side * twice                             # r_p × r_q = branch·h·D
@@ -241,7 +303,8 @@ def _hinge_plain(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, s
 
 
 def hinge(p: PointMotion, q: PointMotion, length_p: float | np.ndarray, length_q: float | np.ndarray,
-          branch: int | np.ndarray = 1, angles: ArrayLike | None = None, lenient: bool = False) -> Hinge:
+          branch: int | np.ndarray = 1, angles: ArrayLike | None = None, lenient: bool = False,
+          deferred_angles: bool = False) -> Hinge:
     """Solve two links meeting at a hinge: J at the lengths |pJ| = ``length_p`` and |qJ| = ``length_q``.
 
     Parameters
@@ -262,6 +325,9 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float | np.ndarray, length_q
         False (default): raise where the circles do not meet. True: mark those positions in
         :attr:`Hinge.assembled` and give ``nan`` there (a family in which some members, or some
         positions, do not assemble).
+    deferred_angles : bool
+        True: at order 0, the links' angles are :class:`DeferredAngle` objects, computed when called (a
+        family's positions need no arctangents). False (default): they are computed now.
 
     Returns
     -------
@@ -290,12 +356,13 @@ def hinge(p: PointMotion, q: PointMotion, length_p: float | np.ndarray, length_q
     with the determinant ``r_p × r_q`` = |pJ| |qJ| sin(θ_q − θ_p), zero where the links are in line
     (chapter 4; the lecture's crank-rocker is the case p = A, q = C).
     """
-    return _solved(hinge, _hinge_in_place, p, q, length_p, length_q, branch, angles, lenient)
+    return _solved(hinge, _hinge_in_place, p, q, length_p, length_q, branch, angles, lenient, deferred_angles)
 
 
 def _hinge_in_place(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any, side: Any, d: np.ndarray,
-                    distance: np.ndarray) -> Hinge:
-    """The formulas of :func:`hinge`, on checked inputs, computed in place."""
+                    distance: np.ndarray, far: np.ndarray, near: np.ndarray, deferred_angles: bool = False) -> Hinge:
+    """The formulas of :func:`hinge`, on checked inputs (``far = L_p + L_q − D``, ``near = D − |L_p − L_q|``, arrays
+    of its own that it overwrites), computed in place."""
     order = min(p.order, q.order)
     total, difference = length_p + length_q, abs(length_p - length_q)
     # Heron's product h·D, its two small factors near a limit computed directly and clipped at
@@ -303,11 +370,9 @@ def _hinge_in_place(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any
     # two lengths each keep it in range for lengths from 1e-150 m to 1e150 m. twice = 2·h·D.
     # The arrays are computed in place: fewer temporaries stay in the processor's cache (the plain
     # form of the same formulas is hinge_plain; chapter 9's appendix measures what this buys).
-    far = np.subtract(total, distance)
     np.maximum(far, 0.0, out=far)
     scratch = np.add(distance, total)
     far *= scratch
-    near = np.subtract(distance, difference)
     np.maximum(near, 0.0, out=near)
     near *= np.add(distance, difference, out=scratch)
     twice = np.sqrt(far, out=far)
@@ -326,6 +391,8 @@ def _hinge_in_place(p: PointMotion, q: PointMotion, length_p: Any, length_q: Any
         arm_p.imag *= 0.5 * side
         arm_p *= d
     point = p.value + arm_p
+    if order == 0 and deferred_angles:                 # r_q = J − q too is computed only if its angle is read
+        return Hinge(PointMotion(point), DeferredAngle(arm_p), DeferredAngle(point, q.value), singular)
     arm_q = np.subtract(point, q.value, out=d)          # r_q = J − q (d is not needed any more)
     theta_p, theta_q = angle_of(arm_p), angle_of(arm_q)
     if order == 0:

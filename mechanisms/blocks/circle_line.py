@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike
 
 from ..core.errors import AssemblyError, InvalidParameterError
 from ..core.validate import require_branch, require_finite, require_length
+from .circle_circle import _lengths, _metres, _sides
 from ..core.motion import AngleMotion, Motion, PointMotion
 
 __all__ = ["SliderOnLine", "slider_on_line"]
@@ -58,16 +59,21 @@ class SliderOnLine:
     singular : ndarray of bool
         True where the rod is perpendicular to the guide (|h_J| = rod): B's velocity along the
         guide is unbounded there, and the derivatives are ``inf`` or ``nan`` on purpose.
+    assembled : ndarray of bool or None
+        Only when solved with ``lenient=True``: True where the rod reaches the guide; elsewhere every value is
+        ``nan`` and ``singular`` is False. ``None`` otherwise.
     """
 
     point: PointMotion
     rod_angle: AngleMotion
     travel: Motion
     singular: np.ndarray
+    assembled: np.ndarray | None = None
 
 
-def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direction: float = 0.0,
-                   branch: int = 1, angles: ArrayLike | None = None) -> SliderOnLine:
+def slider_on_line(joint: PointMotion, rod: float | np.ndarray, through: complex | np.ndarray = 0j,
+                   direction: float = 0.0, branch: int | np.ndarray = 1, angles: ArrayLike | None = None,
+                   lenient: bool = False) -> SliderOnLine:
     """Solve a rod from a moving joint J to a slider B on a fixed straight guide.
 
     Parameters
@@ -75,19 +81,25 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     joint : PointMotion
         The joint J at the rod's other end (m, m/s, m/s²); its order (0, 1 or 2) sets the order of
         the result. Arrays of any shape (one entry per crank position).
-    rod : float
-        The rod's length |JB| (m), finite and > 0. In the book's notation L2 (or l_BC in source 004).
-    through : complex
-        A point of the guide ``x + iy`` (m); the slider's travel s is measured from it.
+    rod : float or ndarray
+        The rod's length |JB| (m), finite and > 0. In the book's notation L2 (or l_BC in source 004). An
+        array (a family of linkages, e.g. of shape (G, 1) against positions of shape (G, N)) broadcasts
+        against the positions.
+    through : complex or ndarray of complex
+        A point of the guide ``x + iy`` (m); the slider's travel s is measured from it (one per member of a
+        family, likewise).
     direction : float
         The guide's direction β (rad), counter-clockwise from +x; s grows in this direction.
-    branch : int
+    branch : int or ndarray of int
         +1: B lies ahead of the foot of the perpendicular from J (in the guide's direction);
         −1: behind it. For the crank-slider with the guide along +x, +1 puts the slider on the
-        right of the crank pin.
+        right of the crank pin. An array: one per member of a family (or per position).
     angles : array_like, optional
         The crank angles (rad) of the positions, used only to name them in an
         :class:`~mechanisms.errors.AssemblyError`.
+    lenient : bool
+        False (default): raise where the rod cannot reach the guide. True: mark those positions in
+        :attr:`SliderOnLine.assembled` and give ``nan`` there.
 
     Returns
     -------
@@ -123,12 +135,18 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     by an arcsin, land there). A joint beyond reach by more than the round-off of
     ``c_B²`` (``8ε_mach·rod·(rod + |J − P|)``) is an assembly error; one within it is taken as at reach.
     """
-    rod = require_length("rod", rod)
-    branch = require_branch(branch)
+    # one linkage's numbers take the short way (no array checks): a solve of few positions is mostly this
+    rod = require_length("rod", rod) if type(rod) is float else _lengths("rod", rod)
+    branch = require_branch(branch) if type(branch) is int or np.ndim(branch) == 0 else _sides(branch)
     direction = require_finite("direction", direction)
-    through = complex(through)
-    if not (np.isfinite(through.real) and np.isfinite(through.imag)):
-        raise InvalidParameterError("through", through, "a finite point x + iy (m)")
+    if type(through) is complex or np.ndim(through) == 0:
+        through = complex(through)
+        if not (np.isfinite(through.real) and np.isfinite(through.imag)):
+            raise InvalidParameterError("through", through, "a finite point x + iy (m)")
+    else:       # a family: one guide per member
+        through = np.asarray(through, dtype=complex)
+        if not np.isfinite(through).all():
+            raise InvalidParameterError("through", through, "finite points x + iy (m)")
     e = np.exp(1j * direction)
     e_conj = np.conj(e)
 
@@ -138,10 +156,13 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     # the round-off of w²: h carries that of the joint's coordinates, so it scales with |J − P| too
     slack = _REACH_TOLERANCE * rod * (rod + np.abs(local))
     unreachable = reach < -slack
-    if np.any(unreachable):
+    assembled = None
+    if lenient:
+        assembled = ~unreachable
+    elif np.any(unreachable):
         worst = float(np.max(np.abs(h)))
         where = None if angles is None else np.broadcast_to(np.asarray(angles, dtype=float), h.shape)[unreachable]
-        reason = (f"the rod cannot reach its guide: the rod is {rod:g} m long but its far joint is up to "
+        reason = (f"the rod cannot reach its guide: the rod is {_metres(rod)} long but its far joint is up to "
                   f"{worst:.6g} m from the guide")
         if where is None:
             reason += f" (at {int(np.count_nonzero(unreachable))} position(s))"
@@ -150,13 +171,17 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
     # position is that limit (w = 0) and its derivatives are unbounded, not large finite numbers
     singular = reach <= _SINGULAR_FACTOR * slack
     w = np.where(singular, 0.0, np.sqrt(np.maximum(reach, 0.0)))
+    if assembled is not None and not assembled.all():
+        # where the rod does not reach, nothing is defined: nan runs through every value below
+        w = np.where(assembled, w, np.nan)
+        singular &= assembled
 
     s = u + branch * w
     position = through + s * e
     rod_angle = direction + np.arctan2(-h, branch * w)
     order = joint.order
     if order == 0:
-        return SliderOnLine(PointMotion(position), AngleMotion(rod_angle), Motion(s), singular)
+        return SliderOnLine(PointMotion(position), AngleMotion(rod_angle), Motion(s), singular, assembled)
 
     with np.errstate(divide="ignore", invalid="ignore"):
         local_t = e_conj * joint.velocity
@@ -171,11 +196,11 @@ def slider_on_line(joint: PointMotion, rod: float, through: complex = 0j, direct
         theta_t = -branch * h_t / w
         if order == 1:
             point = PointMotion(position, s_t * e)
-            return SliderOnLine(point, AngleMotion(rod_angle, theta_t), Motion(s, s_t), singular)
+            return SliderOnLine(point, AngleMotion(rod_angle, theta_t), Motion(s, s_t), singular, assembled)
         local_tt = e_conj * joint.acceleration
         u_tt, h_tt = local_tt.real, local_tt.imag
         w_tt = -(h_t**2 + h * h_tt + w_t**2) / w
         s_tt = u_tt + branch * w_tt
         theta_tt = -(branch * h_tt + theta_t * w_t) / w
         point = PointMotion(position, s_t * e, s_tt * e)
-    return SliderOnLine(point, AngleMotion(rod_angle, theta_t, theta_tt), Motion(s, s_t, s_tt), singular)
+    return SliderOnLine(point, AngleMotion(rod_angle, theta_t, theta_tt), Motion(s, s_t, s_tt), singular, assembled)

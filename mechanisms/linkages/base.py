@@ -17,9 +17,11 @@ from typing import Any, ClassVar, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..blocks.crank import crank_angle
-from ..core.errors import SingularPositionWarning, UnknownNameError, describe_angles
-from ..core.validate import require_coordinate, require_order
+from ..blocks.crank import crank_angle, crank_pin
+from ..core.errors import InvalidParameterError, SingularPositionWarning, UnknownNameError, describe_angles
+from ..core.validate import (LENGTH_MAX, LENGTH_MIN, require_branch, require_coordinate, require_finite_array,
+                             require_length, require_order)
+from ..core.angles import constant
 from ..core.motion import AngleMotion, Motion, PointMotion, point_on_link
 from .groups import Group
 
@@ -32,7 +34,109 @@ __all__ = [
     "Block",
     "Guide",
     "registry",
+    "is_family",
+    "member_values",
+    "family_shape",
+    "family_pin",
 ]
+
+
+# --- families of linkages: dimensions given as arrays of one shape G --------------------------------------
+
+def is_family(*values: object) -> bool:
+    """True if any of ``values`` is an array (or a sequence) rather than one number: a family of linkages."""
+    for value in values:
+        if type(value) in (float, int):     # the usual one linkage, without numpy's look at it
+            continue
+        try:
+            if np.ndim(value) > 0:    # type: ignore[arg-type]
+                return True
+        except (TypeError, ValueError):   # a ragged sequence: the family's own checks name it
+            return True
+    return False
+
+
+def member_values(name: str, value: object, kind: str) -> np.ndarray:
+    """One parameter of a family of linkages, checked member by member: an array of floats.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name (``"crank"``, ``"frame[0]"`` …).
+    value : array_like
+        One number or an array of them, one per member.
+    kind : str
+        ``"length"`` (finite, from LENGTH_MIN to LENGTH_MAX m), ``"coordinate"`` (finite, magnitude at most
+        LENGTH_MAX m) or ``"branch"`` (+1 or −1, integers).
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming the first bad member by its index (``crank[3]``), its value and what is required, with how many
+        members fail in all; or naming ``name`` when the value is not an array of real numbers.
+    """
+    if kind == "branch":
+        try:
+            raw = np.asarray(value)
+        except (TypeError, ValueError):
+            raw = np.asarray(None)
+        if raw.dtype.kind not in "iu":
+            raise InvalidParameterError(name, value, "+1 or -1 (one sign, or one per member), as integers")
+        array = raw.astype(float)
+        bad = (array != 1.0) & (array != -1.0)
+    else:
+        array = _finite_members(name, value)
+        bad = ~((array >= LENGTH_MIN) & (array <= LENGTH_MAX)) if kind == "length" else np.abs(array) > LENGTH_MAX
+    if bad.any():
+        index = tuple(int(i) for i in np.argwhere(bad)[0])
+        label = f"{name}[{', '.join(map(str, index))}]" if index else name
+        member = array[index].item()
+        count = int(np.count_nonzero(bad))
+        try:
+            if kind == "branch":
+                require_branch(int(member), label)
+            elif kind == "length":
+                require_length(label, member)
+            else:
+                require_coordinate(label, member)
+        except InvalidParameterError as error:
+            more = f" ({count} members of the family fail)" if count > 1 else ""
+            raise InvalidParameterError(label, error.value, error.requirement + more) from None
+    return array
+
+
+def _finite_members(name: str, value: Any) -> np.ndarray:
+    """``value`` as an array of finite floats, or raise naming the first member that is not finite by its index."""
+    try:
+        return require_finite_array(name, value, "m")
+    except InvalidParameterError:
+        try:
+            raw = None if value is None or isinstance(value, (str, bytes)) else np.asarray(value, dtype=float)
+        except (TypeError, ValueError, OverflowError):
+            raw = None
+        if raw is None or raw.ndim == 0 or np.isfinite(raw).all():
+            raise
+        bad = ~np.isfinite(raw)
+        index = ", ".join(str(int(i)) for i in np.argwhere(bad)[0])
+        count = int(np.count_nonzero(bad))
+        more = f" ({count} members of the family fail)" if count > 1 else ""
+        raise InvalidParameterError(f"{name}[{index}]", raw[bad][0].item(), "a finite number (m)" + more) from None
+
+
+def family_pin(crank: AngleMotion, length: np.ndarray | float) -> PointMotion:
+    """The crank pin A = L1·e^{iφ} of every member of a family (lengths of shape G + (1,), N crank angles): arrays
+    G + (N,). The unit vector and its rates are computed once for the N angles, then scaled by each member's L1."""
+    unit = crank_pin(crank, 1.0)
+    return PointMotion(*(None if v is None else length * v for v in unit.derivatives()))
+
+
+def family_shape(**arrays: np.ndarray) -> tuple[int, ...]:
+    """The shape G of a family: the parameters' shapes broadcast together, or raise naming them all."""
+    try:
+        return np.broadcast_shapes(*(np.shape(v) for v in arrays.values()))
+    except ValueError:
+        raise InvalidParameterError(", ".join(arrays), ", ".join(str(np.shape(v)) for v in arrays.values()),
+                                    "arrays of one shape G (or numbers), which broadcast together") from None
 
 
 class Solution:
@@ -50,13 +154,17 @@ class Solution:
     singular : ndarray of bool
         True where a velocity or acceleration is unbounded or undetermined (a singular position);
         those values are ``inf`` (unbounded) or ``nan`` (undetermined) on purpose and a :class:`SingularPositionWarning` was issued.
+
+    A family of linkages (a mechanism whose dimensions are arrays of shape G) has N crank angles ``phi``
+    and every other array of shape G + (N,): one row of positions per member.
     """
 
     def __init__(self, phi: np.ndarray, order: int, *, angles: dict[str, AngleMotion],
                  points: dict[str, PointMotion], links: dict[str, str],
                  sliders: dict[str, Motion] | None = None,
                  extras: dict[str, dict[str, Any]] | None = None,
-                 singular: np.ndarray | None = None):
+                 singular: np.ndarray | None = None, assembled: np.ndarray | None = None):
+        self._assembled = assembled
         self.phi = phi
         self.order = order
         self._angles = angles
@@ -68,6 +176,17 @@ class Solution:
 
     def __len__(self) -> int:
         return int(np.size(self.phi))
+
+    @property
+    def assembled(self) -> np.ndarray:
+        """True where the mechanism assembles (the shape of :attr:`singular`).
+
+        All True unless the mechanism was solved leniently (a family with ``lenient=True``): there, where a
+        member does not assemble, its angles and points are ``nan`` and ``singular`` is False.
+        """
+        if self._assembled is None:
+            return np.ones(np.shape(self.singular), dtype=bool)
+        return self._assembled
 
     @property
     def angle_names(self) -> list[str]:
@@ -150,12 +269,14 @@ class Solution:
         extras = {joint: {key: None if value is None else np.asarray(value) * factor for key, value in values.items()}
                   for joint, values in self.extras.items()}
         return Solution(self.phi, self.order, angles=self._angles, points=times(self._points), links=self._links,
-                        sliders=times(self._sliders), extras=extras, singular=self.singular)
+                        sliders=times(self._sliders), extras=extras, singular=self.singular,
+                        assembled=self._assembled)
 
     def with_points(self, points: dict[str, PointMotion]) -> "Solution":
         """The same solution with more named points (a coupler point, an instant centre) to look up."""
         return Solution(self.phi, self.order, angles=self._angles, points={**self._points, **points},
-                        links=self._links, sliders=self._sliders, extras=self.extras, singular=self.singular)
+                        links=self._links, sliders=self._sliders, extras=self.extras, singular=self.singular,
+                        assembled=self._assembled)
 
     def point_on(self, link: str, along: float, left: float = 0.0) -> PointMotion:
         """A point fixed to a link, computed now (on demand).
@@ -238,7 +359,11 @@ _SCALE_BAND = 2.0**64
 def _scale_of(mechanism: "Mechanism") -> float:
     """1.0, or the power of four 4^k ≤ the mechanism's largest length (m) when that is outside the band where
     squares of lengths are safe: the mechanism is then solved with its lengths divided by 4^k (exact)."""
-    sizes = [abs(float(v)) for v in mechanism.preserved_distances().values()]
+    values = mechanism.preserved_distances().values()
+    if mechanism.family_shape:      # a family is solved at one scale, its largest member's
+        sizes = [float(np.max(np.abs(v), initial=0.0)) for v in values]
+    else:
+        sizes = [abs(float(v)) for v in values]
     size = max(sizes, default=1.0)
     if not math.isfinite(size) or size == 0.0 or 1.0 / _SCALE_BAND <= size <= _SCALE_BAND:
         return 1.0
@@ -267,6 +392,10 @@ class Mechanism(ABC):
     """True for the mechanisms that ``python -m mechanisms bench`` measures (at :meth:`example`)."""
     always_assembles: ClassVar[bool] = False
     """True for a mechanism that assembles at every crank angle (a slotted lever)."""
+    family_shape: tuple[int, ...] = ()
+    """The shape G of a family of linkages (dimensions given as arrays), ``()`` for one linkage."""
+    family_parameters: tuple[str, ...] = ()
+    """The names of the parameters a family was given as arrays."""
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -316,12 +445,51 @@ class Mechanism(ABC):
         inner = None if scale == 1.0 else self._rescaled(1.0 / scale)
         solution = self._solve(crank, order) if inner is None else inner._solve(crank, order).scaled(scale)
         if solution.singular.any() and (order or not _finite_at(solution, solution.singular)):
+            where = np.broadcast_to(solution.phi, solution.singular.shape)[solution.singular]
+            members = ""
+            if self.family_shape:      # name the first member, and say how many there are
+                rows = solution.singular.reshape(-1, solution.singular.shape[-1]).any(axis=-1)
+                first = np.unravel_index(int(np.argmax(rows)), self.family_shape)
+                count = int(np.count_nonzero(rows))
+                members = f" of member {', '.join(map(str, first))}" + (f" and {count - 1} more" if count > 1 else "")
             warnings.warn(
                 f"{type(self).__name__}: velocities/accelerations are unbounded or undetermined (a singular "
-                f"position) at crank angle(s) {describe_angles(solution.phi[solution.singular])}; "
+                f"position) at crank angle(s) {describe_angles(where)}{members}; "
                 "see Solution.singular",
                 SingularPositionWarning, stacklevel=2)
         return solution
+
+    def _family_columns(self, phi: np.ndarray, *values: Any) -> tuple[tuple[int, ...], list[Any]]:
+        """For a family's solve: the shape G + (N,) of its results and ``values`` (its dimensions, shape G) as
+        columns G + (1,) against the N crank angles (unchanged for one linkage); ``phi`` must be one-dimensional."""
+        shape = self.family_shape
+        if shape and np.ndim(phi) != 1:
+            raise InvalidParameterError("phi", f"an array of shape {np.shape(phi)}",
+                                        "a one-dimensional array of crank angles (the same N for every member)")
+        return shape + np.shape(phi), [np.asarray(v)[..., np.newaxis] if shape else v for v in values]
+
+    @staticmethod
+    def _family_motions(crank: AngleMotion, full: tuple[int, ...], order: int) -> tuple[AngleMotion, PointMotion]:
+        """A family's crank motion and its crank pivot O at the origin, as views of shape ``full`` (no memory)."""
+        still = constant(0j, full)
+        return (AngleMotion(*(None if v is None else np.broadcast_to(v, full) for v in crank.derivatives())),
+                PointMotion(still, *([still] * order)))
+
+    @staticmethod
+    def _first_failing(assembled: np.ndarray) -> tuple[tuple[int, ...], str]:
+        """The index of the first member of a family that does not assemble at every crank angle, and words
+        saying how many fail (``"3 members fail"``)."""
+        rows = ~assembled.all(axis=-1)
+        count = int(np.count_nonzero(rows))
+        return tuple(int(i) for i in np.argwhere(rows)[0]), f"{count} member{'s fail' if count != 1 else ' fails'}"
+
+    def require_one_linkage(self, what: str) -> None:
+        """Raise :class:`InvalidParameterError` if this is a family of linkages: ``what`` is defined for one
+        linkage (solve the family, or make one mechanism per member)."""
+        if self.family_shape:
+            raise InvalidParameterError(", ".join(self.family_parameters), f"arrays of shape {self.family_shape}",
+                                        f"one number each ({what}: defined for one linkage; make one mechanism "
+                                        "per member)")
 
     def _rescaled(self, factor: float) -> "Mechanism | None":
         """The same mechanism with every length multiplied by ``factor`` (a power of four), or ``None`` if the
@@ -389,7 +557,8 @@ class Mechanism(ABC):
         return {p.name: getattr(self, p.name) for p in self.cli_parameters}
 
     def describe(self) -> str:
-        """One line naming the mechanism and its parameters with units."""
+        """One line naming the mechanism and its parameters with units (one linkage, not a family)."""
+        self.require_one_linkage("a one-line description")
         parts = []
         for p in self.cli_parameters:
             value = getattr(self, p.name)

@@ -9,19 +9,20 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .chunks import solve_in_chunks
 from .groups import RRP, Crank, Group
-from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
+from .base import (Bar, Block, Ground, Guide, Mechanism, Parameter, Solution, family_pin, family_shape, is_family,
+                   member_values)
 from ..blocks.circle_line import slider_on_line
 from ..blocks.crank import crank_pin
-from ..core.errors import AssemblyError
-from ..core.validate import require_branch, require_coordinate, require_length
-from ..core.motion import AngleMotion, Motion, fixed_point
+from ..core.errors import AssemblyError, InvalidParameterError
+from ..core.validate import require_branch, require_coordinate, require_flag, require_length
+from ..core.motion import AngleMotion, Motion, PointMotion, fixed_point
 
 __all__ = ["CrankSlider", "assembly_ranges"]
 
@@ -68,15 +69,25 @@ class CrankSlider(Mechanism):
 
     Parameters
     ----------
-    crank : float
+    crank : float or array_like
         Crank length L1 = |OA| (m), > 0.
-    rod : float
+    rod : float or array_like
         Coupler (connecting-rod) length L2 = |AB| (m), > 0.
-    offset : float
+    offset : float or array_like
         Offset e (m): the slider's guide is the line y = e, parallel to x (0 for the axial mechanism).
-    branch : int
+    branch : int or array_like of int
         +1: the slider works on the +x side of the crank pin (B to the right of A), and so, for a crank
         that turns fully, on the +x side of the crank pivot; −1: on the −x side.
+    lenient : bool
+        False (default): a linkage (a member of a family, named by its index) whose rod cannot reach the
+        guide raises :class:`AssemblyError`. True: those positions are marked False in
+        :attr:`Solution.assembled` and are ``nan``.
+
+    A family of crank-sliders: any of the dimensions (and ``branch``) as arrays of one shape G (or shapes that
+    broadcast to it), each member checked as one linkage is (a bad one named by its index, ``rod[2]``).
+    Solving at N crank angles (one-dimensional ``phi``) gives arrays of shape G + (N,), each member as it is
+    solved alone. What is defined for one linkage only (:meth:`assembly_intervals`, the dead centres, the
+    stroke, a linkage file …) refuses a family with :class:`InvalidParameterError`.
 
     Notes
     -----
@@ -93,15 +104,46 @@ class CrankSlider(Mechanism):
     )
     links = {"crank": "O", "coupler": "A"}
 
-    def __init__(self, crank: float, rod: float, offset: float = 0.0, branch: int = 1):
+    # one linkage: floats (and an int branch); a family: arrays of shape G (typed Any for the two)
+    crank: Any
+    rod: Any
+    offset: Any
+    branch: Any
+
+    def __init__(self, crank: ArrayLike, rod: ArrayLike, offset: ArrayLike = 0.0, branch: ArrayLike = 1,
+                 lenient: bool = False):
+        self.lenient = require_flag("lenient", lenient)
+        if is_family(crank, rod, offset, branch):
+            self._family(crank, rod, offset, branch)
+            return
         self.crank = require_length("crank", crank)
         self.rod = require_length("rod", rod)
         self.offset = require_coordinate("offset", offset)
         self.branch = require_branch(branch)
         ranges = assembly_ranges(self.crank, self.rod, self.offset)
-        if ranges == []:
+        if ranges == [] and not self.lenient:
             raise AssemblyError(f"the rod cannot reach the guide at any crank angle: rod = {self.rod:g} m is "
                                 f"shorter than |offset| − crank = {abs(self.offset) - self.crank:g} m")
+
+    def _family(self, crank: ArrayLike, rod: ArrayLike, offset: ArrayLike, branch: ArrayLike) -> None:
+        """Set a family's dimensions: arrays of one shape G, checked member by member."""
+        values = {"crank": member_values("crank", crank, "length"), "rod": member_values("rod", rod, "length"),
+                  "offset": member_values("offset", offset, "coordinate"),
+                  "branch": member_values("branch", branch, "branch")}
+        shape = family_shape(**values)
+        self.family_parameters = tuple(name for name, value in values.items() if value.ndim)
+        l1, l2, e, side = (np.broadcast_to(v, shape) for v in values.values())
+        never = l2 < np.abs(e) - l1
+        if never.any() and not self.lenient:
+            index = tuple(int(i) for i in np.argwhere(never)[0])
+            label = ", ".join(map(str, index))
+            raise AssemblyError(f"member {label} of the family cannot be assembled at any crank angle: its rod "
+                                f"({l2[index]:g} m) cannot reach the guide (|offset| − crank = "
+                                f"{abs(e[index]) - l1[index]:g} m; {int(np.count_nonzero(never))} member(s) in all; "
+                                "lenient=True marks them instead)")
+        self.crank, self.rod, self.offset = l1, l2, e
+        self.branch = side.astype(int)
+        self.family_shape = shape
 
     benchmark = True
 
@@ -113,6 +155,7 @@ class CrankSlider(Mechanism):
     def assembly_intervals(self) -> list[tuple[float, float]]:
         """Crank-angle intervals (rad) of assembly: ``[(−π, π)]`` for a full revolution (L2 ≥ L1 + |e|),
         else those of :func:`assembly_ranges`."""
+        self.require_one_linkage("the assembly intervals")
         ranges = assembly_ranges(self.crank, self.rod, self.offset)
         return [(-math.pi, math.pi)] if ranges is None else ranges
 
@@ -122,6 +165,7 @@ class CrankSlider(Mechanism):
         The crank O → A, and an RRP dyad: the coupler A → B with the slider B on the guide y = e; the
         dyad's branch is the class's (+1: B farther along +x than A). Loaded, it is the same linkage.
         """
+        self.require_one_linkage("a linkage file")
         return {"name": "Crank-slider", "frame": {"O": [0.0, 0.0]},
                 "crank": {"pivot": "O", "pin": "A", "length": self.crank},
                 "dyad": [{"type": "RRP", "joint": "B", "from": "A", "length": self.rod,
@@ -129,6 +173,7 @@ class CrankSlider(Mechanism):
                           "links": ["coupler", "slider"]}]}
 
     def groups(self) -> tuple[Group, ...]:
+        self.require_one_linkage("the structure (plans, instant centres)")
         return (Crank("O", "A"), RRP("B", "A", "coupler", "slider", 0.0))
 
     @property
@@ -145,9 +190,11 @@ class CrankSlider(Mechanism):
         return assembly_ranges(self.crank, self.rod, self.offset)
 
     def _rescaled(self, factor: float) -> "CrankSlider":
-        return CrankSlider(self.crank * factor, self.rod * factor, self.offset * factor, self.branch)
+        return CrankSlider(self.crank * factor, self.rod * factor, self.offset * factor, self.branch, self.lenient)
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        if self.family_shape or self.lenient:
+            return self._solve_family(crank, order)
         # long arrays block by block, in the processor's cache (chapter 9)
         return solve_in_chunks(self._solve_block, crank, order, self.links)
 
@@ -169,7 +216,28 @@ class CrankSlider(Mechanism):
                         points={"O": pivot, "A": pin, "B": block.point}, links=self.links,
                         sliders={"B": block.travel}, singular=block.singular)
 
+    def _solve_family(self, crank: AngleMotion, order: int) -> Solution:
+        """A family (or a linkage solved leniently): every member at every crank angle, arrays G + (N,)."""
+        phi = crank.value
+        full, (l1, l2, e, side) = self._family_columns(phi, self.crank, self.rod, self.offset, self.branch)
+        pin = family_pin(crank, l1)
+        block = slider_on_line(pin, l2, through=1j * e, direction=0.0, branch=side, angles=phi, lenient=True)
+        assembled = np.asarray(block.assembled)
+        if not self.lenient and not assembled.all():
+            if not self.family_shape:
+                self._solve_block(AngleMotion(phi), 0)     # one linkage: its own message, with its intervals
+            first, failing = self._first_failing(assembled)
+            raise AssemblyError(f"member {', '.join(map(str, first))} of the family cannot be assembled at some crank "
+                                f"angles: its rod ({self.rod[first]:g} m) is shorter than crank + |offset| = "
+                                f"{self.crank[first] + abs(self.offset[first]):g} m ({failing} in all; solve with "
+                                "lenient=True to mark them instead)", phi[~assembled[first]])
+        angle, origin = self._family_motions(crank, full, order)
+        return Solution(phi, order, angles={"crank": angle, "coupler": block.rod_angle},
+                        points={"O": origin, "A": pin, "B": block.point},
+                        links=self.links, sliders={"B": block.travel}, singular=block.singular, assembled=assembled)
+
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
+        self.require_one_linkage("a drawing")
         # the guide is drawn centred near the middle of the stroke
         return (Guide(complex(self.branch * self.rod, self.offset), 0.0), Ground("O"),
                 Bar("crank", ("O", "A"), "crank"), Bar("coupler", ("A", "B"), "coupler"), Block("B", 0.0))
@@ -184,9 +252,12 @@ class CrankSlider(Mechanism):
     def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         """Φ = (L1 cos φ + L2 cos ψ − s, L1 sin φ + L2 sin ψ − e): the loop O→A→B closes on the guide."""
         psi, s = q
-        return (self.crank * np.cos(phi) + self.rod * np.cos(psi) - s,
-                self.crank * np.sin(phi) + self.rod * np.sin(psi) - self.offset)
+        # a family's dimensions per member (a row of positions each)
+        l1, l2, e = (np.asarray(v)[..., np.newaxis] if self.family_shape else v
+                     for v in (self.crank, self.rod, self.offset))
+        return (l1 * np.cos(phi) + l2 * np.cos(psi) - s,
+                l1 * np.sin(phi) + l2 * np.sin(psi) - e)
 
     def __repr__(self) -> str:
-        return (f"CrankSlider(crank={self.crank!r}, rod={self.rod!r}, offset={self.offset!r}, "
-                f"branch={self.branch:+d})")
+        branch = f"{self.branch!r}" if self.family_shape else f"{self.branch:+d}"
+        return f"CrankSlider(crank={self.crank!r}, rod={self.rod!r}, offset={self.offset!r}, branch={branch})"

@@ -19,7 +19,7 @@ import functools
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Callable, Sequence
+from typing import Any, Callable, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,12 +27,14 @@ from numpy.typing import ArrayLike
 from .chunks import solve_in_chunks
 from ..core.angles import wrap_angle
 from .groups import RRR, Crank, Group
-from .base import Bar, Block, Ground, Guide, Mechanism, Parameter, Solution
+from .base import (Bar, Block, Ground, Guide, Mechanism, Parameter, Solution, family_pin, family_shape, is_family,
+                   member_values)
 from ..blocks.circle_circle import hinge
 from ..blocks.crank import crank_angle, crank_pin
 from ..core.errors import AssemblyError, InvalidParameterError, describe_range
 from ..core.exact import squared_distance_equals
-from ..core.validate import require_branch, require_finite_array, require_length, require_flag, require_pair
+from ..core.validate import require_branch, require_length, require_flag, require_pair
+from ..core.angles import constant
 from ..core.motion import AngleMotion, Motion, PointMotion, fixed_point
 
 __all__ = [
@@ -310,6 +312,18 @@ def _require_frame(value: object) -> tuple[float, float]:
     return a, b
 
 
+def _frame_pair(frame: Any) -> tuple[Any, Any] | None:
+    """``frame`` as its two coordinates (each a number or a family's array), or None if it is not a pair (the
+    check of one linkage's frame then names it)."""
+    if isinstance(frame, (str, bytes, dict)) or frame is None or (isinstance(frame, np.ndarray) and frame.ndim != 1):
+        return None
+    try:
+        parts: tuple[Any, ...] = tuple(frame)
+    except TypeError:
+        return None
+    return (parts[0], parts[1]) if len(parts) == 2 else None
+
+
 @functools.lru_cache(maxsize=1024)
 def _change_points_of(crank: float, coupler: float, rocker: float, frame: tuple[float, float]) -> tuple[float, ...]:
     """:func:`change_point_angles`, kept for each geometry: deciding a change point is exact (rational
@@ -322,17 +336,31 @@ class FourBar(Mechanism):
 
     Parameters
     ----------
-    crank, coupler, rocker : float
+    crank, coupler, rocker : float or array_like
         L1, L2, L3 (m).
     frame : (float, float)
-        The rocker pivot C = (x_C, y_C) (m).
-    branch : int
+        The rocker pivot C = (x_C, y_C) (m); each coordinate a number or an array (a family).
+    branch : int or array_like of int
         +1: B to the left of the directed line A → C; −1: to the right.
     keep_side : bool
         False (default): at a change point the linkage keeps its assembly mode (smooth
         continuation, see Notes). True: B stays on the side ``branch`` of A → C at every crank
         angle, so at a change point the linkage turns back into its own mode with a jump of the
         angular velocities (the source's drop-shaped lambda curve at d = 11 is drawn so).
+    lenient : bool
+        False (default): :meth:`solve` raises :class:`AssemblyError` where the linkage (a member of a
+        family: named by its index) does not assemble. True: those positions are marked False in
+        :attr:`Solution.assembled`, their angles and points are ``nan`` and they are not singular.
+
+    A family of four-bars: give any of the dimensions (and ``branch``) as arrays of one shape G (or shapes
+    that broadcast to it). Each member is checked as one linkage is (a bad one is named by its index,
+    ``crank[3]``); solving at N crank angles (a one-dimensional ``phi``) gives arrays of shape G + (N,), every
+    member exactly as it is solved alone, at the cost per member and position of one linkage's solve per
+    position. What is defined for one linkage only (:meth:`assembly_intervals`, :attr:`lengths`, the
+    analysis functions built on them, a linkage file) refuses a family with :class:`InvalidParameterError`.
+    At order 0 the link angles of a family are computed when first read. A family of more than some
+    :data:`~mechanisms.linkages.chunks.BLOCK` member-positions is fastest solved in parts of about that many
+    (the benchmark's family row does so): the temporaries of a part stay in the processor's cache.
 
     Notes
     -----
@@ -360,23 +388,67 @@ class FourBar(Mechanism):
     )
     links = {"crank": "O", "coupler": "A", "rocker": "C"}
 
-    def __init__(self, crank: float, coupler: float, rocker: float, frame: tuple[float, float],
-                 branch: int = 1, keep_side: bool = False):
+    # one linkage: floats (and an int branch); a family: arrays of shape G (typed Any for the two)
+    crank: Any
+    coupler: Any
+    rocker: Any
+    frame: Any
+    branch: Any
+
+    def __init__(self, crank: ArrayLike, coupler: ArrayLike, rocker: ArrayLike,
+                 frame: tuple[ArrayLike, ArrayLike], branch: ArrayLike = 1, keep_side: bool = False,
+                 lenient: bool = False):
         self.keep_side = require_flag("keep_side", keep_side)
+        self.lenient = require_flag("lenient", lenient)
+        pair = _frame_pair(frame)
+        if pair is not None and is_family(crank, coupler, rocker, branch, *pair):
+            self._family(crank, coupler, rocker, pair, branch)
+            return
         self.crank = require_length("crank", crank)
         self.coupler = require_length("coupler", coupler)
         self.rocker = require_length("rocker", rocker)
         self.frame = _require_frame(frame)
         self.branch = require_branch(branch)
 
+    def _family(self, crank: ArrayLike, coupler: ArrayLike, rocker: ArrayLike, frame: tuple[Any, Any],
+                branch: ArrayLike) -> None:
+        """Set a family's dimensions: arrays of one shape G, checked member by member."""
+        values = {"crank": member_values("crank", crank, "length"),
+                  "coupler": member_values("coupler", coupler, "length"),
+                  "rocker": member_values("rocker", rocker, "length"),
+                  "frame[0]": member_values("frame[0]", frame[0], "coordinate"),
+                  "frame[1]": member_values("frame[1]", frame[1], "coordinate"),
+                  "branch": member_values("branch", branch, "branch")}
+        shape = family_shape(**values)
+        self.family_parameters = tuple(name for name, value in values.items() if value.ndim)
+        l1, l2, l3, x, y, side = (np.broadcast_to(v, shape) for v in values.values())
+        at_origin = (x == 0.0) & (y == 0.0)
+        if at_origin.any():
+            index = ", ".join(str(int(i)) for i in np.argwhere(at_origin)[0])
+            raise InvalidParameterError(f"frame[..][{index}]", (0.0, 0.0),
+                                        "a rocker pivot (x_C, y_C) other than the crank pivot (0, 0)")
+        self.crank, self.coupler, self.rocker = l1, l2, l3
+        self.frame = (x, y)
+        self.branch = side.astype(int)
+        self.family_shape = shape
+
     @property
     def pivot(self) -> complex:
-        """The rocker pivot C as ``x_C + i y_C`` (m)."""
+        """The rocker pivot C as ``x_C + i y_C`` (m) (an array of them for a family)."""
+        if self.family_shape:
+            return self.frame[0] + 1j * self.frame[1]
         return complex(*self.frame)
 
     @property
     def lengths(self) -> tuple[float, float, float, float]:
-        """(L1, L2, L3, d): crank, coupler, rocker and frame |OC| (m)."""
+        """(L1, L2, L3, d): crank, coupler, rocker and frame |OC| (m).
+
+        Raises
+        ------
+        InvalidParameterError
+            For a family (the analysis built on the four lengths is defined for one linkage).
+        """
+        self.require_one_linkage("the four lengths (L1, L2, L3, d)")
         return self.crank, self.coupler, self.rocker, abs(self.pivot)
 
     benchmark = True
@@ -388,11 +460,12 @@ class FourBar(Mechanism):
 
     def assembly_intervals(self) -> list[tuple[float, float]]:
         """Crank-angle intervals (rad) in which the linkage assembles (see the module function)."""
+        self.require_one_linkage("the assembly intervals")
         return assembly_intervals(self.crank, self.coupler, self.rocker, self.frame)
 
     def _rescaled(self, factor: float) -> "FourBar":
         return FourBar(self.crank * factor, self.coupler * factor, self.rocker * factor,
-                       (self.frame[0] * factor, self.frame[1] * factor), self.branch, self.keep_side)
+                       (self.frame[0] * factor, self.frame[1] * factor), self.branch, self.keep_side, self.lenient)
 
     def linkage_data(self) -> dict:
         """This four-bar as the contents of a linkage file (:mod:`~mechanisms.linkages.linkage_file`).
@@ -401,16 +474,19 @@ class FourBar(Mechanism):
         A → C (the class's branch). Loaded, it is the same linkage (a file has no ``keep_side``: at a
         change point it keeps the geometric side).
         """
+        self.require_one_linkage("a linkage file")
         return {"name": "Four-bar", "frame": {"O": [0.0, 0.0], "C": [self.frame[0], self.frame[1]]},
                 "crank": {"pivot": "O", "pin": "A", "length": self.crank},
                 "dyad": [{"type": "RRR", "joint": "B", "from": ["A", "C"], "lengths": [self.coupler, self.rocker],
                           "branch": self.branch, "links": ["coupler", "rocker"]}]}
 
     def groups(self) -> tuple[Group, ...]:
+        self.require_one_linkage("the structure (plans, instant centres)")
         return (Crank("O", "A"), RRR("B", "A", "C", "coupler", "rocker"))
 
     def change_points(self) -> tuple[float, ...]:
         """Crank angles (rad) of the change points the crank passes (empty for most linkages)."""
+        self.require_one_linkage("the change points")
         return _change_points_of(float(self.crank), float(self.coupler), float(self.rocker),
                                  (float(self.frame[0]), float(self.frame[1])))
 
@@ -423,8 +499,65 @@ class FourBar(Mechanism):
         return np.broadcast_to(side, phi.shape).copy()
 
     def _solve(self, crank: AngleMotion, order: int) -> Solution:
+        if self.family_shape or self.lenient:
+            return self._solve_family(crank, order)
         # long arrays block by block, in the processor's cache (chapter 9)
         return solve_in_chunks(self._solve_block, crank, order, self.links)
+
+    def _family_sides(self, phi: np.ndarray) -> np.ndarray | int:
+        """The side of B per member (shape G + (1,)) or per member and position (G + (N,), where some member
+        passes change points): the continuation rule of one linkage, member by member."""
+        if not self.family_shape:
+            return self.branch if self.keep_side or not self.change_points() else self.sides(phi)
+        side = self.branch[..., np.newaxis]
+        if self.keep_side:
+            return side
+        # a change point needs |d − L1| = |L2 − L3| or d + L1 = L2 + L3, decided exactly; only the members
+        # within round-off of one are asked (rational arithmetic costs as much as a small solve)
+        l1, l2, l3, (x, y) = self.crank, self.coupler, self.rocker, self.frame
+        d = np.hypot(x, y)
+        near = 1e-9 * (l1 + l2 + l3 + d)
+        candidates = np.argwhere((np.abs(np.abs(d - l1) - np.abs(l2 - l3)) <= near) | (np.abs(d + l1 - l2 - l3) <= near))
+        if not len(candidates):
+            return side
+        sides = np.array(np.broadcast_to(side, self.family_shape + phi.shape))
+        for index in map(tuple, candidates):
+            flips = _change_points_of(float(l1[index]), float(l2[index]), float(l3[index]),
+                                      (float(x[index]), float(y[index])))
+            if flips:
+                sides[index] = _sides(phi, int(self.branch[index]), math.atan2(y[index], x[index]), flips)
+        return sides
+
+    def _solve_family(self, crank: AngleMotion, order: int) -> Solution:
+        """A family (or a linkage solved leniently): every member at every crank angle, arrays G + (N,)."""
+        phi = crank.value
+        full, (l1, l2, l3, x, y) = self._family_columns(phi, self.crank, self.coupler, self.rocker, *self.frame)
+        pin = family_pin(crank, l1)
+        angle, origin = self._family_motions(crank, full, order)
+        pivot = PointMotion(np.broadcast_to(x + 1j * y, full), *origin.derivatives()[1:order + 1])
+        # the link angles of a family's positions are computed only if asked for (arctangents cost)
+        joint = hinge(pin, pivot, l2, l3, self._family_sides(phi), phi, lenient=True, deferred_angles=True)
+        assembled = np.asarray(joint.assembled)
+        if not self.lenient and not assembled.all():
+            self._family_failure(assembled, phi)
+        return Solution(phi, order, angles={"crank": angle, "coupler": joint.angle_p, "rocker": joint.angle_q},
+                        points={"O": origin, "A": pin, "B": joint.point, "C": pivot},
+                        links=self.links, singular=joint.singular, assembled=assembled)
+
+    def _family_failure(self, assembled: np.ndarray, phi: np.ndarray) -> None:
+        """Raise the :class:`AssemblyError` of a family solved strictly, naming the first member that fails."""
+        if not self.family_shape:
+            self._solve_block(AngleMotion(phi), 0)     # one linkage: its own message, with its intervals
+        first, failing = self._first_failing(assembled)
+        member = FourBar(float(self.crank[first]), float(self.coupler[first]), float(self.rocker[first]),
+                         (float(self.frame[0][first]), float(self.frame[1][first])), int(self.branch[first]))
+        intervals = member.assembly_intervals()
+        where = ("it assembles at no crank angle" if not intervals else "it assembles for crank angles in "
+                 + " and ".join(describe_range(lo, hi) for lo, hi in intervals))
+        label = ", ".join(map(str, first))
+        raise AssemblyError(f"member {label} of the family cannot be assembled at some crank angles ({where}; "
+                            f"{failing} in all; solve with lenient=True to mark "
+                            "them instead)", phi[~assembled[first]])
 
     def _solve_block(self, crank: AngleMotion, order: int) -> Solution:
         phi = crank.value
@@ -451,6 +584,7 @@ class FourBar(Mechanism):
                         links=self.links, singular=joint.singular)
 
     def scheme(self) -> Sequence[Bar | Ground | Block | Guide]:
+        self.require_one_linkage("a drawing")
         return [Ground("O"), Ground("C"), Bar("crank", ("O", "A"), "crank"),
                 Bar("coupler", ("A", "B"), "coupler"), Bar("rocker", ("C", "B"), "rocker")]
 
@@ -463,9 +597,11 @@ class FourBar(Mechanism):
 
     def constraints(self, q: Sequence, phi: ArrayLike) -> tuple:
         psi, xi = q
-        a, b = self.frame
-        return (self.crank * np.cos(phi) + self.coupler * np.cos(psi) - self.rocker * np.cos(xi) - a,
-                self.crank * np.sin(phi) + self.coupler * np.sin(psi) - self.rocker * np.sin(xi) - b)
+        # a family's dimensions per member (a row of positions each)
+        l1, l2, l3, a, b = (np.asarray(v)[..., np.newaxis] if self.family_shape else v
+                            for v in (self.crank, self.coupler, self.rocker, *self.frame))
+        return (l1 * np.cos(phi) + l2 * np.cos(psi) - l3 * np.cos(xi) - a,
+                l1 * np.sin(phi) + l2 * np.sin(psi) - l3 * np.sin(xi) - b)
 
 
 # --- a family of four-bars solved at once --------------------------------------------------------------
@@ -494,13 +630,6 @@ class FourBarFamily:
     points: dict[str, PointMotion]
     assembled: np.ndarray
     singular: np.ndarray
-
-
-def _member_lengths(name: str, value: ArrayLike) -> np.ndarray:
-    array = require_finite_array(name, value, "m")
-    if (array <= 0.0).any():
-        raise InvalidParameterError(name, array[array <= 0.0][:3].tolist(), "positive lengths (m)")
-    return array
 
 
 def four_bar_family(crank: ArrayLike, coupler: ArrayLike, rocker: ArrayLike, frame_x: ArrayLike, frame_y: ArrayLike,
@@ -534,42 +663,11 @@ def four_bar_family(crank: ArrayLike, coupler: ArrayLike, rocker: ArrayLike, fra
 
     Notes
     -----
-    The members are composed of the same routines as :class:`FourBar` (the crank,
-    :func:`~mechanisms.blocks.crank.crank_pin`, and two links meeting at a hinge,
-    :func:`~mechanisms.blocks.circle_circle.hinge`), whose arithmetic works on whole arrays: a family costs
+    It is ``FourBar(crank, coupler, rocker, (frame_x, frame_y), branch, keep_side=True, lenient=lenient)``
+    solved at ``phi``: a family of :class:`FourBar`, whose blocks work on whole arrays, so that a family costs
     as much per member and position as one linkage does per position.
     """
-    lengths = [_member_lengths(name, value) for name, value in (("crank", crank), ("coupler", coupler),
-                                                                  ("rocker", rocker))]
-    pivots = [require_finite_array(name, value, "m") for name, value in (("frame_x", frame_x), ("frame_y", frame_y))]
-    sides = require_finite_array("branch", branch)
-    if not np.isin(sides, (-1.0, 1.0)).all():
-        raise InvalidParameterError("branch", sides[~np.isin(sides, (-1.0, 1.0))][:3].tolist(),
-                                    "+1 or -1 (one sign, or one per member)")
-    try:
-        shape = np.broadcast_shapes(*(v.shape for v in (*lengths, *pivots, sides)))
-    except ValueError:
-        raise InvalidParameterError("crank, coupler, rocker, frame_x, frame_y, branch",
-                                    ", ".join(str(v.shape) for v in (*lengths, *pivots, sides)),
-                                    "arrays of one shape G (or numbers), which broadcast together") from None
-    angle = crank_angle(phi, omega, alpha, order)
-    if angle.value.ndim != 1:
-        raise InvalidParameterError("phi", f"an array of shape {angle.value.shape}",
-                                    "a one-dimensional array of crank angles")
-    l1, l2, l3, xc, yc, side = (np.broadcast_to(v, shape)[..., np.newaxis] for v in (*lengths, *pivots, sides))
-    full = shape + angle.value.shape
-    unit = crank_pin(angle, 1.0)                                # e^{iφ} and its rates, then each member's L1
-    pin = PointMotion(*(None if v is None else l1 * v for v in unit.derivatives()))
-    zero = np.zeros(full, dtype=complex)
-    pivot = PointMotion(np.broadcast_to(xc + 1j * yc, full), *([zero] * order))
-    joint = hinge(pin, pivot, l2, l3, side, lenient=True)
-    assembled = np.asarray(joint.assembled)
-    if not lenient and not assembled.all():
-        members = np.argwhere(~assembled.all(axis=-1))
-        first = tuple(members[0])
-        raise AssemblyError(f"member {first if len(first) > 1 else first[0]} of the family cannot be assembled at "
-                            f"some crank angles ({len(members)} member{'s' if len(members) != 1 else ''} in all; "
-                            "solve with lenient=True to mark them instead)", angle.value[~assembled[first]])
-    crank_motion = AngleMotion(*(None if v is None else np.broadcast_to(v, full) for v in angle.derivatives()))
-    return FourBarFamily(angle.value, {"crank": crank_motion, "coupler": joint.angle_p, "rocker": joint.angle_q},
-                         {"A": pin, "B": joint.point}, assembled, joint.singular)
+    family = FourBar(crank, coupler, rocker, (frame_x, frame_y), branch, keep_side=True, lenient=lenient)
+    solution = family.solve(phi, omega, alpha, order)
+    return FourBarFamily(solution.phi, {name: solution.angle(name) for name in ("crank", "coupler", "rocker")},
+                         {name: solution.point(name) for name in ("A", "B")}, solution.assembled, solution.singular)

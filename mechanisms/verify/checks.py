@@ -23,6 +23,7 @@ def constraint_residual(mechanism: Mechanism, solution: Solution) -> float:
 
 def distance_deviation(mechanism: Mechanism, solution: Solution) -> float:
     """Largest change of a distance between two joints of one rigid link (m)."""
+    mechanism.require_one_linkage("the distance check")
     return float(max(np.max(np.abs(np.abs(solution.point(a).value - solution.point(b).value) - length))
                      for (a, b), length in mechanism.preserved_distances().items()))
 
@@ -64,6 +65,7 @@ def generic_errors(mechanism: Mechanism, phi: ArrayLike, omega: float = 1.0, alp
 
     Returns the errors of positions, velocities and accelerations (angles wrapped).
     """
+    mechanism.require_one_linkage("the comparison with the generic solver")
     closed = mechanism.solve(phi, omega, alpha, order=2)
     generic = solve_generic(mechanism, phi, omega, alpha, order=2, tol=tol)
     coords = mechanism.coordinates(closed)
