@@ -83,14 +83,14 @@ class CrankSlider(Mechanism):
         guide raises :class:`AssemblyError`. True: those positions are marked False in
         :attr:`Solution.assembled` and are ``nan``.
 
+    Notes
+    -----
     A family of crank-sliders: any of the dimensions (and ``branch``) as arrays of one shape G (or shapes that
     broadcast to it), each member checked as one linkage is (a bad one named by its index, ``rod[2]``).
     Solving at N crank angles (one-dimensional ``phi``) gives arrays of shape G + (N,), each member as it is
     solved alone. What is defined for one linkage only (:meth:`assembly_intervals`, the dead centres, the
     stroke, a linkage file …) refuses a family with :class:`InvalidParameterError`.
 
-    Notes
-    -----
     Joints ``O`` (crank pivot, the origin), ``A`` (crank pin), ``B`` (slider); links ``crank``
     (angle φ) and ``coupler`` (angle ψ of the vector A→B); slider ``B``: its position s = x_B along
     the guide. Constraints (chapter 3): ``L1 cos φ + L2 cos ψ = s``, ``L1 sin φ + L2 sin ψ = e``.

@@ -352,6 +352,8 @@ class FourBar(Mechanism):
         family: named by its index) does not assemble. True: those positions are marked False in
         :attr:`Solution.assembled`, their angles and points are ``nan`` and they are not singular.
 
+    Notes
+    -----
     A family of four-bars: give any of the dimensions (and ``branch``) as arrays of one shape G (or shapes
     that broadcast to it). Each member is checked as one linkage is (a bad one is named by its index,
     ``crank[3]``); solving at N crank angles (a one-dimensional ``phi``) gives arrays of shape G + (N,), every
@@ -362,8 +364,6 @@ class FourBar(Mechanism):
     :data:`~mechanisms.linkages.chunks.BLOCK` member-positions is fastest solved in parts of about that many
     (the benchmark's family row does so): the temporaries of a part stay in the processor's cache.
 
-    Notes
-    -----
     Continuation rule (chapter 4). Outside change points the geometric side of B is the same
     at every crank angle, so ``branch`` says it once and for all. A change-point linkage
     (s + l = p + q: parallelogram, deltoid …) has crank angles where the two branches meet (all
